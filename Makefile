@@ -1,0 +1,40 @@
+# SPDX-License-Identifier: MIT
+# Two commands set everything up on a fresh Debian machine (as root):
+#   make demo   installs what is missing, builds, runs the seminar-room example
+#   make test   installs what is missing, builds, runs every test
+BUILD_DIR ?= build
+JOBS ?= $(shell nproc)
+CMAKE_FLAGS ?=
+
+.PHONY: all deps configure build demo test bench clean sanitize-test
+
+all: build
+
+deps:
+	@bash scripts/install_deps.sh
+
+configure: deps
+	@cmake -S . -B $(BUILD_DIR) -DCMAKE_BUILD_TYPE=Release $(CMAKE_FLAGS) > /dev/null
+
+build: configure
+	@cmake --build $(BUILD_DIR) -j $(JOBS)
+
+demo: build
+	@mkdir -p $(BUILD_DIR)/demo
+	$(BUILD_DIR)/bin/mirage run examples/seminar_room.yaml --json $(BUILD_DIR)/demo/report.json \
+	    --csv $(BUILD_DIR)/demo/csv --plot $(BUILD_DIR)/demo/seminar_room.png
+
+test: build
+	@cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
+
+bench: build
+	$(BUILD_DIR)/bin/mirage_bench --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
+
+# The test suite again in a separate AddressSanitizer + UndefinedBehaviorSanitizer build.
+sanitize-test: deps
+	@cmake -S . -B $(BUILD_DIR)-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMIRAGE_SANITIZE=ON -DMIRAGE_BUILD_BENCH=OFF > /dev/null
+	@cmake --build $(BUILD_DIR)-asan -j $(JOBS)
+	@cd $(BUILD_DIR)-asan && ctest --output-on-failure -j $(JOBS) -LE slow
+
+clean:
+	rm -rf $(BUILD_DIR) $(BUILD_DIR)-asan

@@ -1,0 +1,99 @@
+// SPDX-License-Identifier: MIT
+// The mirage command-line tool.
+//   mirage run SCENARIO.yaml [--runs N] [--seed S] [--threads T] [--json FILE] [--csv DIR] [--plot FILE]
+#include <unistd.h>
+
+#include <cstdio>
+#include <exception>
+#include <filesystem>
+#include <iostream>
+#include <mutex>
+#include <optional>
+#include <string>
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include "mirage/io/input_error.h"
+#include "mirage/io/plot.h"
+#include "mirage/io/report.h"
+#include "mirage/io/scenario.h"
+#include "mirage/pipeline/mint_experiment.h"
+#include "mirage/pipeline/mint_summary.h"
+
+namespace {
+
+struct RunArgs {
+  std::string scenario;
+  std::optional<int> runs;
+  std::optional<std::uint64_t> seed;
+  std::optional<int> threads;
+  std::string json;
+  std::string csv;
+  std::string plot;
+  bool quiet = false;
+};
+
+std::string PlotScript() {
+  // Next to the binary's source tree (build/bin/mirage -> tools/plot_run.py), or $MIRAGE_PLOT_SCRIPT.
+  if (const char* env = std::getenv("MIRAGE_PLOT_SCRIPT"); env != nullptr && *env != '\0') return env;
+  return std::string(MIRAGE_SOURCE_DIR) + "/tools/plot_run.py";
+}
+
+int Run(const RunArgs& args) {
+  mirage::io::ScenarioOverrides overrides;
+  overrides.runs = args.runs;
+  overrides.seed = args.seed;
+  overrides.threads = args.threads;
+  const auto scenario = mirage::io::LoadScenario(args.scenario, overrides);
+
+  const bool show_progress = !args.quiet && isatty(STDERR_FILENO) != 0;
+  std::mutex progress_mutex;
+  const auto progress = [&](int done, int total) {
+    if (!show_progress) return;
+    const std::lock_guard<std::mutex> lock(progress_mutex);
+    std::fprintf(stderr, "\rrun %d/%d", done, total);
+    if (done == total) std::fprintf(stderr, "\n");
+  };
+  const auto result = mirage::pipeline::RunMintExperiment(scenario.mint, progress);
+  const auto summary = mirage::pipeline::Summarize(scenario.mint, result);
+
+  if (!args.quiet) std::cout << mirage::io::FormatResultTable(scenario, summary) << std::flush;
+  if (!args.json.empty()) mirage::io::WriteJson(args.json, mirage::io::MakeJsonReport(scenario, result, summary));
+  if (!args.csv.empty()) mirage::io::WriteCsv(args.csv, scenario, result);
+  if (!args.plot.empty()) mirage::io::WritePlot(args.plot, PlotScript(), scenario, result, summary);
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"mirage: multipath-assisted, NLOS-robust indoor localization"};
+  app.require_subcommand(1);
+  RunArgs args;
+  auto* run = app.add_subcommand("run", "simulate (or read) the scenario, run its method, report the result");
+  run->add_option("scenario", args.scenario, "scenario file (YAML)")->required();
+  run->add_option("--runs", args.runs, "Monte-Carlo runs per trajectory (overrides the scenario)");
+  run->add_option("--seed", args.seed, "master seed (overrides the scenario)");
+  run->add_option("--threads", args.threads, "worker threads, 0 = all cores (results do not depend on it)");
+  run->add_option("--json", args.json, "write the JSON report to this file");
+  run->add_option("--csv", args.csv, "write tracks.csv, runs.csv, virtual_anchors.csv into this directory");
+  run->add_option("--plot", args.plot, "write a picture (PNG, PDF or SVG) of the run");
+  run->add_flag("--quiet", args.quiet, "print nothing but errors");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+  try {
+    if (run->parsed()) return Run(args);
+  } catch (const mirage::io::InputError& e) {
+    std::cerr << "mirage: error: " << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "mirage: internal error: " << e.what() << "\n";
+    return 3;
+  }
+  return 0;
+}

@@ -1,0 +1,40 @@
+// SPDX-License-Identifier: MIT
+// The only code that writes a State's covariance (STYLE.md Sec. 3; open_vins's StateHelper):
+// linear propagation of a block, the Joseph-form update, symmetrisation, augmentation with a new
+// block and marginalisation of a block.
+#pragma once
+
+#include <Eigen/Core>
+
+#include "mirage/estimation/state.h"
+
+namespace mirage::estimation {
+
+/// Covariance (and mean) operations on a State.
+class CovarianceOps {
+ public:
+  /// x_b <- F x_b and P <- F_full P F_full^T + Q_b, where F_full is the identity except for the
+  /// square block F acting on the contiguous state range [offset, offset + F.rows()), and Q is
+  /// added on that range. Cost O(n k) for a block of size k in a state of size n. Sets t_s.
+  static void PropagateBlock(State& state, int offset, const Eigen::MatrixXd& F, const Eigen::MatrixXd& Q,
+                             double t_s);
+
+  /// Kalman update with gain K for a measurement with Jacobian H, innovation covariance S and
+  /// noise R: x <- x + K nu and the Joseph form P <- (I - K H) P (I - K H)^T + K R K^T, evaluated
+  /// as P - K U^T - U K^T + K S K^T with U = P H^T (identical for any K, O(n^2 m)).
+  static void JosephUpdate(State& state, const Eigen::MatrixXd& K, const Eigen::MatrixXd& U,
+                           const Eigen::MatrixXd& S, const Eigen::VectorXd& innovation);
+
+  /// P <- (P + P^T) / 2.
+  static void Symmetrize(State& state);
+
+  /// Appends a block with mean x_new, cross-covariance P_new_x (size_new x n, against the old
+  /// state) and covariance P_new (Lafer 2014 Eq. 4.7-4.9).
+  static void Augment(State& state, BlockKey key, const Eigen::VectorXd& x_new, const Eigen::MatrixXd& P_new_x,
+                      const Eigen::MatrixXd& P_new);
+
+  /// Removes a block, marginalising it out of the Gaussian.
+  static void Marginalize(State& state, BlockKey key);
+};
+
+}  // namespace mirage::estimation

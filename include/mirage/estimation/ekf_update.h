@@ -1,0 +1,33 @@
+// SPDX-License-Identifier: MIT
+// Generic EKF measurement update (Lafer 2014 Eq. 3.20-3.24, Joseph form for the covariance).
+// It knows nothing about ranges or UWB: callers stack H, the innovation and R.
+#pragma once
+
+#include <Eigen/Core>
+
+#include "mirage/estimation/state.h"
+
+namespace mirage::estimation {
+
+/// Why an update was not applied.
+enum class UpdateRejection {
+  kNone,                  ///< applied
+  kNoMeasurements,        ///< empty H
+  kNotPositiveDefinite,   ///< S = H P H^T + R could not be factorised
+};
+
+/// Outcome of one update.
+struct UpdateResult {
+  bool applied = false;
+  /// Normalised innovation squared nu^T S^{-1} nu (chi^2 with `dof` degrees of freedom when the
+  /// filter is consistent).
+  double nis = 0.0;
+  int dof = 0;
+  UpdateRejection rejection = UpdateRejection::kNone;
+};
+
+/// Applies z = h(x) + v, v ~ N(0, R), linearised as H, with innovation nu = z - h(x^-).
+UpdateResult EkfUpdate(State& state, const Eigen::MatrixXd& H, const Eigen::VectorXd& innovation,
+                       const Eigen::MatrixXd& R);
+
+}  // namespace mirage::estimation

@@ -1,0 +1,100 @@
+// SPDX-License-Identifier: MIT
+// Strict, position-aware reading of YAML documents: every value is read through a YamlMap that
+// knows its file, line and key path, checks types and ranges, and rejects unknown keys, so that a
+// typo never passes silently (STYLE.md Sec. 4, 9). The only place besides scenario.cc that sees
+// yaml-cpp.
+#pragma once
+
+#include <functional>
+#include <map>
+#include <memory>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include <yaml-cpp/yaml.h>
+
+#include "mirage/core/types.h"
+#include "mirage/io/input_error.h"
+
+namespace mirage::io {
+
+/// Which file each key path came from (documents merged with `extends:`).
+class YamlOrigins {
+ public:
+  explicit YamlOrigins(std::string default_file) : default_file_(std::move(default_file)) {}
+  /// Records that the value at `path` (and below) came from `file`.
+  void Set(const std::string& path, const std::string& file) { files_[path] = file; }
+  /// The file that provided `path`: the longest recorded prefix, else the default file.
+  [[nodiscard]] const std::string& FileOf(const std::string& path) const;
+
+ private:
+  std::string default_file_;
+  std::map<std::string, std::string> files_;
+};
+
+/// Loads a YAML file; a top-level `extends: other.yaml` (relative to the file) loads that file
+/// first and merges this one over it (maps recursively, everything else replaced).
+/// Throws InputError for missing files and syntax errors.
+YAML::Node LoadYamlWithExtends(const std::string& path, YamlOrigins& origins);
+
+/// One YAML mapping being read.
+class YamlMap {
+ public:
+  /// @param node    must be a map (else InputError).
+  /// @param path    key path for messages, e.g. "channel.pulse" ("" for the root).
+  YamlMap(YAML::Node node, std::string path, std::shared_ptr<const YamlOrigins> origins);
+
+  [[nodiscard]] bool Has(const std::string& key) const;
+  [[nodiscard]] const std::string& path() const { return path_; }
+
+  /// A finite number; `fallback` when the key is absent.
+  double Number(const std::string& key, double fallback);
+  /// A required finite number.
+  double Number(const std::string& key);
+  /// A number in [lo, hi] (inclusive), with the unit for the message.
+  double NumberInRange(const std::string& key, double fallback, double lo, double hi, const std::string& unit);
+  /// An integer; `fallback` when absent.
+  int Integer(const std::string& key, int fallback, int lo, int hi);
+  /// An unsigned 64-bit integer (seeds).
+  std::uint64_t Unsigned(const std::string& key, std::uint64_t fallback);
+  /// true/false.
+  bool Boolean(const std::string& key, bool fallback);
+  /// A string; required when fallback is empty-optional.
+  std::string String(const std::string& key, const std::optional<std::string>& fallback = std::nullopt);
+  /// A point [x, y] (m).
+  Vec2 Point(const std::string& key);
+  /// A list of points [[x, y], ...] with at least min_count entries.
+  std::vector<Vec2> Points(const std::string& key, std::size_t min_count);
+  /// A nested map (required).
+  YamlMap Map(const std::string& key);
+  /// A nested map, or an empty one when the key is absent.
+  YamlMap OptionalMap(const std::string& key);
+  /// A list of maps (required, possibly empty when allow_empty).
+  std::vector<YamlMap> MapList(const std::string& key, bool allow_empty);
+  /// The keys and scalar values of a map of name -> number (e.g. materials).
+  std::vector<std::pair<std::string, double>> NumberTable(const std::string& key);
+
+  /// Throws for every key that was never read.
+  void RejectUnknownKeys() const;
+
+  /// Throws an InputError "file:line: path.key: message".
+  [[noreturn]] void Fail(const std::string& key, const std::string& message) const;
+
+ private:
+  [[nodiscard]] YAML::Node Get(const std::string& key);
+  [[nodiscard]] std::string KeyPath(const std::string& key) const;
+  [[nodiscard]] std::string Where(const YAML::Node& node, const std::string& key_path) const;
+  [[nodiscard]] double ToNumber(const YAML::Node& node, const std::string& key_path) const;
+
+  YAML::Node node_;
+  std::string path_;
+  std::shared_ptr<const YamlOrigins> origins_;
+  std::set<std::string> used_;
+};
+
+/// Formats a number for messages (up to 6 significant digits).
+std::string FormatValue(double value);
+
+}  // namespace mirage::io

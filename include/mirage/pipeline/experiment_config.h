@@ -1,0 +1,61 @@
+// SPDX-License-Identifier: MIT
+// Everything one simulated experiment needs: room, anchors, trajectories, Monte-Carlo runs,
+// channel, front-end and method options. Filled by io/ from a scenario file; no YAML here.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "mirage/channel/cir_synthesizer.h"
+#include "mirage/core/types.h"
+#include "mirage/dsp/mpc_extractor.h"
+#include "mirage/eval/error_stats.h"
+#include "mirage/geometry/floor_plan.h"
+#include "mirage/methods/mint/mint_tracker.h"
+
+namespace mirage::pipeline {
+
+/// A trajectory: waypoints walked at constant speed, sampled every dt_s.
+struct TrajectorySpec {
+  std::string name;               ///< label for reports
+  std::vector<Vec2> waypoints_m;  ///< at least two points (m)
+  double speed_mps = 0.5;         ///< walking speed (m/s), > 0; 5 cm per 0.1 s step (Sec. 3.7)
+  double dt_s = 0.1;              ///< time step (s), > 0 (Tab. 3.1)
+};
+
+/// Start offsets of the Monte-Carlo runs: run i is shifted by grid point i mod (nx * ny), the
+/// grid centred on the trajectory (Lafer 2014 Sec. 3.7: 5 x 5 points, 1 cm apart).
+struct RunGrid {
+  int nx = 5;               ///< points along x, >= 1
+  int ny = 5;               ///< points along y, >= 1
+  double spacing_m = 0.01;  ///< grid spacing (m), >= 0
+};
+
+/// Offset (m) of run `run` on the grid.
+Vec2 RunOffset(const RunGrid& grid, int run);
+
+/// A complete simulated MINT experiment.
+struct MintExperimentConfig {
+  std::string name;                 ///< scenario name
+  std::uint64_t seed = 1;           ///< master seed; run i of trajectory t uses Rng(seed, stream(t, i))
+  int runs = 25;                    ///< runs per trajectory, >= 1
+  RunGrid run_grid;                 ///< start offsets of the runs
+  geometry::FloorPlan plan;         ///< the room the signals are simulated in
+  geometry::FloorPlan known_plan;   ///< the floor plan the tracker knows (usually the same)
+  std::vector<std::string> anchor_ids;
+  std::vector<Vec2> anchors_m;      ///< true anchor positions (m)
+  std::vector<Vec2> known_anchors_m;  ///< anchor positions the tracker knows (m)
+  std::vector<TrajectorySpec> trajectories;
+  channel::ChannelOptions channel;
+  int channel_max_order = 2;        ///< highest reflection order simulated, in [0, 6]
+  dsp::MpcExtractorOptions mpc;
+  methods::mint::MintOptions mint;
+  eval::DivergenceRule divergence;
+  /// Start the tracker at a draw from N(true start, sigma_i^2 I) instead of at the true start.
+  /// The thesis starts at the known start point with variance sigma_i^2 (Tab. 3.1; digest [GAP]).
+  bool perturb_initial_position = false;
+  int threads = 0;                  ///< worker threads; 0 = all cores. Results do not depend on it.
+};
+
+}  // namespace mirage::pipeline

@@ -1,0 +1,57 @@
+// SPDX-License-Identifier: MIT
+// Summary of a MINT experiment: error statistics overall and per trajectory, divergence, PEB,
+// SINR statistics (true and estimated) and timing; what the report prints and writes.
+#pragma once
+
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "mirage/eval/error_stats.h"
+#include "mirage/pipeline/mint_experiment.h"
+
+namespace mirage::pipeline {
+
+/// Distribution of a set of SINR values (dB).
+struct SinrStats {
+  std::size_t count = 0;
+  double mean_db = 0.0;
+  double p10_db = 0.0;
+  double p50_db = 0.0;
+  double p90_db = 0.0;
+};
+
+/// Statistics of a group of runs.
+struct GroupSummary {
+  std::string name;
+  int runs = 0;
+  int steps = 0;
+  eval::ErrorStats error;
+  int diverged_runs = 0;
+  std::optional<double> peb_mean_m;  ///< empty when no step had a finite PEB
+  std::optional<double> peb_p50_m;
+  int peb_singular_steps = 0;        ///< steps without two independent directions
+};
+
+/// The whole summary.
+struct MintSummary {
+  GroupSummary overall;
+  std::vector<GroupSummary> trajectories;
+  /// Keyed by "los", "order1", "order2", ...
+  std::map<std::string, SinrStats> true_sinr;
+  std::map<std::string, SinrStats> estimated_sinr;
+  /// Estimated minus true SINR (dB), for VAs associated with an estimate at a step.
+  std::map<std::string, SinrStats> sinr_estimate_error;
+  double wall_s = 0.0;
+  double simulate_s = 0.0;  ///< summed over runs (CPU time of the simulator)
+  double estimate_s = 0.0;  ///< summed over runs (CPU time of extraction + tracking)
+};
+
+/// Name of an order group: "los" for 0, "orderK" otherwise.
+std::string OrderName(int order);
+
+/// Computes the summary.
+MintSummary Summarize(const MintExperimentConfig& config, const MintExperimentResult& result);
+
+}  // namespace mirage::pipeline

@@ -1,0 +1,143 @@
+// SPDX-License-Identifier: MIT
+#include "mirage/channel/cir_synthesizer.h"
+
+#include <bit>
+#include <cmath>
+
+#include "mirage/core/constants.h"
+#include "mirage/core/units.h"
+
+namespace mirage::channel {
+namespace {
+
+int SampleCount(const ChannelOptions& options) {
+  return static_cast<int>(std::lround(options.window_length_s / options.sample_period_s));
+}
+
+// Guard band beyond the window (samples): the pulse tails decay below 1e-6 of the peak within
+// 32 pulse durations, so tails that wrap around the circular FFT grid are negligible.
+int GuardSamples(const ChannelOptions& options) {
+  return static_cast<int>(std::ceil(32.0 * options.pulse.duration_s / options.sample_period_s));
+}
+
+std::size_t FftSize(const ChannelOptions& options) {
+  return std::bit_ceil(static_cast<std::size_t>(SampleCount(options) + 2 * GuardSamples(options)));
+}
+
+}  // namespace
+
+std::vector<std::string> Validate(const ChannelOptions& options) {
+  std::vector<std::string> problems;
+  for (const auto& p : Validate(options.pulse)) problems.push_back("pulse." + p);
+  for (const auto& p : Validate(options.diffuse)) problems.push_back("diffuse." + p);
+  if (!(options.sample_period_s > 0.0) || !std::isfinite(options.sample_period_s)) {
+    problems.push_back("sample_period_s must be > 0 s");
+  } else if (problems.empty()) {
+    const double nyquist_s = 1.0 / (2.0 * RaisedCosinePulse(options.pulse).band_edge_hz());
+    if (options.sample_period_s > nyquist_s) {
+      problems.push_back("sample_period_s must be at most " + std::to_string(nyquist_s) +
+                         " s (Nyquist for the pulse bandwidth)");
+    }
+  }
+  if (!(options.window_start_s >= 0.0) || !std::isfinite(options.window_start_s)) {
+    problems.push_back("window_start_s must be >= 0 s");
+  }
+  if (!(options.window_length_s > 0.0) || !std::isfinite(options.window_length_s)) {
+    problems.push_back("window_length_s must be > 0 s");
+  } else if (options.sample_period_s > 0.0 && options.window_length_s / options.sample_period_s > 1e6) {
+    problems.push_back("window_length_s / sample_period_s must be at most 1e6 samples");
+  }
+  if (!std::isfinite(options.snr_at_1m_db)) problems.push_back("snr_at_1m_db must be a finite number of dB");
+  return problems;
+}
+
+CirSynthesizer::CirSynthesizer(const ChannelOptions& options)
+    : options_(options),
+      pulse_(options.pulse),
+      sample_count_(SampleCount(options)),
+      guard_samples_(GuardSamples(options)),
+      noise_psd_(core::DbToPowerRatio(-options.snr_at_1m_db)),
+      fft_(FftSize(options)) {
+  const std::size_t m = fft_.size();
+  const double df_hz = 1.0 / (static_cast<double>(m) * options_.sample_period_s);
+  bin_frequency_hz_.resize(m);
+  bin_spectrum_.resize(m);
+  const double scale = 1.0 / std::sqrt(options_.sample_period_s);
+  for (std::size_t k = 0; k < m; ++k) {
+    const double f = (k <= m / 2 ? static_cast<double>(k) : static_cast<double>(k) - static_cast<double>(m)) * df_hz;
+    bin_frequency_hz_[k] = f;
+    bin_spectrum_[k] = pulse_.Spectrum(f) * scale;
+  }
+}
+
+double CirSynthesizer::DiffusePdp(double delay_s, double los_distance_m) const {
+  if (!options_.diffuse.enabled) return 0.0;
+  const double los_delay_s = los_distance_m / core::kSpeedOfLight_mps;
+  // Total DM energy Omega_1 scales with the free-space LOS energy (1 m / d_LOS)^2.
+  const double omega = core::DbToPowerRatio(options_.diffuse.power_ratio_db) / (los_distance_m * los_distance_m);
+  return omega * DiffusePdpShape(options_.diffuse, delay_s - los_delay_s);
+}
+
+double CirSynthesizer::TrueSinr(const Complex& amplitude, double delay_s, double los_distance_m) const {
+  const double interference = noise_psd_ + pulse_.effective_duration_s() * DiffusePdp(delay_s, los_distance_m);
+  return std::norm(amplitude) / interference;
+}
+
+SynthesizedCir CirSynthesizer::Synthesize(std::span<const SpecularPath> paths, double los_distance_m,
+                                          core::Rng& diffuse_rng, core::Rng& noise_rng) const {
+  const std::size_t m = fft_.size();
+  const double ts = options_.sample_period_s;
+  const double start_s = options_.window_start_s;
+  const double df_hz = 1.0 / (static_cast<double>(m) * ts);
+  const double band_edge_hz = pulse_.band_edge_hz();
+  const auto positive_bins = static_cast<std::size_t>(std::floor(band_edge_hz / df_hz));
+
+  SynthesizedCir out;
+  std::vector<Complex> spectrum(m, Complex(0.0, 0.0));
+
+  // Specular paths: sum_k alpha_k e^{-j 2 pi f (tau_k - start)} on the in-band bins. Paths whose
+  // pulse would wrap around the FFT grid into the window are outside every physical window.
+  const double earliest_s = start_s - guard_samples_ * ts;
+  const double latest_s = start_s + static_cast<double>(m - static_cast<std::size_t>(guard_samples_)) * ts;
+  for (const auto& path : paths) {
+    if (path.delay_s < earliest_s || path.delay_s >= latest_s) continue;
+    const double rel_s = path.delay_s - start_s;
+    const Complex step = std::polar(1.0, -2.0 * core::kPi * df_hz * rel_s);
+    Complex positive = path.amplitude;
+    Complex negative = path.amplitude;
+    spectrum[0] += positive;
+    for (std::size_t k = 1; k <= positive_bins && k < m / 2; ++k) {
+      positive *= step;
+      negative *= std::conj(step);
+      spectrum[k] += positive;
+      spectrum[m - k] += negative;
+    }
+    if (path.delay_s >= start_s && path.delay_s < start_s + sample_count_ * ts) {
+      out.paths.push_back({path.va_id, path.order, path.delay_s, path.amplitude,
+                           TrueSinr(path.amplitude, path.delay_s, los_distance_m)});
+    }
+  }
+
+  // Diffuse multipath: nu[j] ~ CN(0, S_nu(t_j) T_s) on the window and the guard after it.
+  if (options_.diffuse.enabled) {
+    std::vector<Complex> nu(m, Complex(0.0, 0.0));
+    const std::size_t last = static_cast<std::size_t>(sample_count_ + guard_samples_);
+    for (std::size_t j = 0; j < last; ++j) {
+      const double pdp = DiffusePdp(start_s + static_cast<double>(j) * ts, los_distance_m);
+      if (pdp > 0.0) nu[j] = diffuse_rng.ComplexNormal(pdp * ts);
+    }
+    fft_.Forward(nu, nu);
+    for (std::size_t k = 0; k < m; ++k) spectrum[k] += nu[k];
+  }
+
+  for (std::size_t k = 0; k < m; ++k) spectrum[k] *= bin_spectrum_[k];
+  fft_.Inverse(spectrum, spectrum);
+
+  out.cir.start_s = start_s;
+  out.cir.sample_period_s = ts;
+  out.cir.samples.assign(spectrum.begin(), spectrum.begin() + sample_count_);
+  for (auto& sample : out.cir.samples) sample += noise_rng.ComplexNormal(noise_psd_);
+  return out;
+}
+
+}  // namespace mirage::channel

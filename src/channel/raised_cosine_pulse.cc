@@ -1,0 +1,126 @@
+// SPDX-License-Identifier: MIT
+#include "mirage/channel/raised_cosine_pulse.h"
+
+#include <cmath>
+
+#include "mirage/core/constants.h"
+#include "mirage/core/fft.h"
+#include "mirage/core/types.h"
+
+namespace mirage::channel {
+namespace {
+
+using core::kPi;
+
+// Unnormalised RC spectrum X(f): T on the flat part, raised cosine on the roll-off, 0 beyond.
+double RcSpectrum(double f_hz, double duration_s, double rolloff) {
+  const double f = std::abs(f_hz);
+  const double flat_edge = (1.0 - rolloff) / (2.0 * duration_s);
+  const double band_edge = (1.0 + rolloff) / (2.0 * duration_s);
+  if (f <= flat_edge) return duration_s;
+  if (f > band_edge) return 0.0;
+  return 0.5 * duration_s * (1.0 + std::cos(kPi * duration_s / rolloff * (f - flat_edge)));
+}
+
+// Composite Simpson integral of g over [0, b] with n (even) intervals.
+template <typename G>
+double Simpson(const G& g, double b, int n) {
+  const double h = b / n;
+  double sum = g(0.0) + g(b);
+  for (int i = 1; i < n; ++i) sum += (i % 2 == 1 ? 4.0 : 2.0) * g(i * h);
+  return sum * h / 3.0;
+}
+
+}  // namespace
+
+std::vector<std::string> Validate(const PulseOptions& options) {
+  std::vector<std::string> problems;
+  if (!(options.carrier_hz > 0.0) || !std::isfinite(options.carrier_hz)) {
+    problems.push_back("carrier_hz must be > 0 Hz");
+  }
+  if (!(options.rolloff >= 0.0 && options.rolloff <= 1.0)) problems.push_back("rolloff must be in [0, 1]");
+  if (!(options.duration_s > 0.0) || !std::isfinite(options.duration_s)) {
+    problems.push_back("duration_s must be > 0 s");
+  }
+  return problems;
+}
+
+RaisedCosinePulse::RaisedCosinePulse(const PulseOptions& options) : options_(options) {
+  const double t = options_.duration_s;
+  const double edge = band_edge_hz();
+  constexpr int kIntervals = 4096;
+  // All integrals are over the even spectrum, so twice the integral over [0, edge]; the factor
+  // cancels in ratios. Energy of X: T (1 - beta / 4).
+  const auto p2 = [&](double f) {
+    const double x = Spectrum(f);
+    return x * x;
+  };
+  const double energy = 2.0 * Simpson(p2, edge, kIntervals);
+  const double second_moment = 2.0 * Simpson([&](double f) { return f * f * p2(f); }, edge, kIntervals);
+  rms_bandwidth_hz_ = std::sqrt(second_moment / energy);
+  effective_duration_s_ = 2.0 * Simpson([&](double f) { return p2(f) * p2(f); }, edge, kIntervals);
+
+  // Tabulate R(tau) by an inverse FFT of |P(f)|^2 on a fine grid (step T/64, period 128 T, so
+  // the periodic copies of R are far below the 1e-4 support threshold), normalised to R(0) = 1.
+  constexpr std::size_t kSize = 8192;
+  table_step_s_ = t / 64.0;
+  const double df_hz = 1.0 / (static_cast<double>(kSize) * table_step_s_);
+  std::vector<Complex> spectrum(kSize);
+  for (std::size_t k = 0; k < kSize; ++k) {
+    const double f = (k < kSize / 2 ? static_cast<double>(k) : static_cast<double>(k) - static_cast<double>(kSize)) * df_hz;
+    spectrum[k] = p2(f);
+  }
+  const core::Fft fft(kSize);
+  fft.Inverse(spectrum, spectrum);
+  const double r0 = spectrum[0].real();
+  const std::size_t max_index = kSize / 4;  // 32 T
+  std::size_t last_significant = 0;
+  for (std::size_t i = 0; i < max_index; ++i) {
+    if (std::abs(spectrum[i].real() / r0) >= 1e-4) last_significant = i;
+  }
+  autocorrelation_table_.resize(last_significant + 2);
+  for (std::size_t i = 0; i < autocorrelation_table_.size(); ++i) autocorrelation_table_[i] = spectrum[i].real() / r0;
+  support_s_ = static_cast<double>(last_significant + 1) * table_step_s_;
+}
+
+double RaisedCosinePulse::band_edge_hz() const {
+  return (1.0 + options_.rolloff) / (2.0 * options_.duration_s);
+}
+
+double RaisedCosinePulse::Spectrum(double f_hz) const {
+  const double t = options_.duration_s;
+  const double norm = std::sqrt(t * (1.0 - options_.rolloff / 4.0));
+  return RcSpectrum(f_hz, t, options_.rolloff) / norm;
+}
+
+double RaisedCosinePulse::Value(double t_s) const {
+  const double t = options_.duration_s;
+  const double beta = options_.rolloff;
+  const double norm = std::sqrt(t * (1.0 - beta / 4.0));
+  const double u = t_s / t;
+  const double sinc = std::abs(u) < 1e-12 ? 1.0 : std::sin(kPi * u) / (kPi * u);
+  const double denom = 1.0 - 4.0 * beta * beta * u * u;
+  double shape = 0.0;
+  if (std::abs(denom) < 1e-10) {
+    // Removable singularity at |t| = T / (2 beta): limit (pi / 4) sinc(1 / (2 beta)).
+    const double v = 1.0 / (2.0 * beta);
+    shape = kPi / 4.0 * std::sin(kPi * v) / (kPi * v);
+  } else {
+    shape = sinc * std::cos(kPi * beta * u) / denom;
+  }
+  return shape / norm;
+}
+
+double RaisedCosinePulse::Autocorrelation(double tau_s) const {
+  const double x = std::abs(tau_s) / table_step_s_;
+  const auto i = static_cast<std::size_t>(x);
+  if (i + 1 >= autocorrelation_table_.size()) return 0.0;
+  const double frac = x - static_cast<double>(i);
+  return (1.0 - frac) * autocorrelation_table_[i] + frac * autocorrelation_table_[i + 1];
+}
+
+double RaisedCosinePulse::range_sigma_at_unit_sinr_m() const {
+  return core::kSpeedOfLight_mps / (std::sqrt(8.0) * core::kPi * rms_bandwidth_hz_);
+}
+
+}  // namespace mirage::channel

@@ -1,0 +1,135 @@
+// SPDX-License-Identifier: MIT
+#include "mirage/dsp/mpc_extractor.h"
+
+#include <algorithm>
+#include <bit>
+#include <cassert>
+#include <cmath>
+
+#include "mirage/core/constants.h"
+#include "mirage/core/units.h"
+
+namespace mirage::dsp {
+
+std::vector<std::string> Validate(const MpcExtractorOptions& options) {
+  std::vector<std::string> problems;
+  if (options.max_components < 1 || options.max_components > 1000) {
+    problems.push_back("max_components must be in [1, 1000]");
+  }
+  if (!(options.relative_threshold_db < 0.0) || !std::isfinite(options.relative_threshold_db)) {
+    problems.push_back("relative_threshold_db must be a finite number < 0 dB");
+  }
+  return problems;
+}
+
+MpcExtractor::MpcExtractor(const MpcExtractorOptions& options, const channel::RaisedCosinePulse& pulse,
+                           int sample_count, double sample_period_s)
+    : options_(options),
+      pulse_(pulse),
+      sample_count_(sample_count),
+      sample_period_s_(sample_period_s),
+      threshold_ratio_(core::DbToPowerRatio(options.relative_threshold_db)),
+      support_samples_(static_cast<int>(std::ceil(pulse.autocorrelation_support_s() / sample_period_s))),
+      // Zero padding by the template support keeps the circular correlation from wrapping.
+      fft_(std::bit_ceil(static_cast<std::size_t>(sample_count + 2 * support_samples_ + 2))) {
+  const std::size_t m = fft_.size();
+  const double df_hz = 1.0 / (static_cast<double>(m) * sample_period_s_);
+  template_spectrum_.resize(m);
+  for (std::size_t k = 0; k < m; ++k) {
+    const double f = (k <= m / 2 ? static_cast<double>(k) : static_cast<double>(k) - static_cast<double>(m)) * df_hz;
+    template_spectrum_[k] = pulse_.Spectrum(f) / std::sqrt(sample_period_s_);
+  }
+}
+
+std::vector<Complex> MpcExtractor::MatchedFilter(const core::Cir& cir) const {
+  assert(static_cast<int>(cir.samples.size()) == sample_count_);
+  std::vector<Complex> buffer(fft_.size(), Complex(0.0, 0.0));
+  std::copy(cir.samples.begin(), cir.samples.end(), buffer.begin());
+  fft_.Forward(buffer, buffer);
+  // y = r correlated with the real, even template: Y[k] = R[k] conj(S[k]) = R[k] S[k].
+  for (std::size_t k = 0; k < buffer.size(); ++k) buffer[k] *= template_spectrum_[k];
+  fft_.Inverse(buffer, buffer);
+  buffer.resize(static_cast<std::size_t>(sample_count_));
+  return buffer;
+}
+
+MpcExtractor::Component MpcExtractor::Refine(const std::vector<Complex>& y, int n) const {
+  Component c;
+  c.offset = n;
+  c.amplitude = y[static_cast<std::size_t>(n)];
+  if (n <= 0 || n >= sample_count_ - 1) return c;
+  const Complex ya = y[static_cast<std::size_t>(n - 1)];
+  const Complex yb = y[static_cast<std::size_t>(n)];
+  const Complex yc = y[static_cast<std::size_t>(n + 1)];
+  const double a = std::norm(ya), b = std::norm(yb), cc = std::norm(yc);
+  const double curvature = a - 2.0 * b + cc;
+  if (curvature >= 0.0) return c;  // not a local maximum of |y|^2
+  const double delta = std::clamp(0.5 * (a - cc) / curvature, -0.5, 0.5);
+  c.offset = n + delta;
+  // Quadratic (Lagrange) interpolation of the complex MF output at the refined delay.
+  c.amplitude = yb + 0.5 * delta * (yc - ya) + 0.5 * delta * delta * (ya - 2.0 * yb + yc);
+  return c;
+}
+
+void MpcExtractor::AddScaled(std::vector<Complex>& y, const Component& c, double sign) const {
+  const int center = static_cast<int>(std::lround(c.offset));
+  const int lo = std::max(0, center - support_samples_);
+  const int hi = std::min(sample_count_ - 1, center + support_samples_);
+  for (int n = lo; n <= hi; ++n) {
+    y[static_cast<std::size_t>(n)] += sign * c.amplitude * pulse_.Autocorrelation((n - c.offset) * sample_period_s_);
+  }
+}
+
+std::vector<Mpc> MpcExtractor::Extract(const core::Cir& cir) const {
+  std::vector<Complex> residual = MatchedFilter(cir);
+  std::vector<Component> found;
+  found.reserve(static_cast<std::size_t>(options_.max_components));
+  double reference_energy = 0.0;
+  for (int k = 0; k < options_.max_components; ++k) {
+    // Search (Eq. 3.1): the strongest remaining peak of the matched-filter output.
+    int best = 0;
+    double best_energy = -1.0;
+    for (int n = 0; n < sample_count_; ++n) {
+      const double e = std::norm(residual[static_cast<std::size_t>(n)]);
+      if (e > best_energy) {
+        best_energy = e;
+        best = n;
+      }
+    }
+    const Component c = Refine(residual, best);
+    const double energy = std::norm(c.amplitude);
+    if (k == 0) reference_energy = energy;
+    if (energy <= 0.0 || energy < threshold_ratio_ * reference_energy) break;
+    // Subtract (Eq. 3.2).
+    AddScaled(residual, c, -1.0);
+    found.push_back(c);
+    if (!options_.readjust) continue;
+    // Readjust the earlier components that overlap the new one.
+    for (std::size_t j = 0; j + 1 < found.size(); ++j) {
+      if (std::abs(found[j].offset - c.offset) > support_samples_) continue;
+      AddScaled(residual, found[j], +1.0);
+      const int center = static_cast<int>(std::lround(found[j].offset));
+      int local_best = std::clamp(center, 0, sample_count_ - 1);
+      for (int n = std::max(0, center - 2); n <= std::min(sample_count_ - 1, center + 2); ++n) {
+        if (std::norm(residual[static_cast<std::size_t>(n)]) > std::norm(residual[static_cast<std::size_t>(local_best)])) {
+          local_best = n;
+        }
+      }
+      found[j] = Refine(residual, local_best);
+      AddScaled(residual, found[j], -1.0);
+    }
+  }
+  std::vector<Mpc> mpcs;
+  mpcs.reserve(found.size());
+  for (const auto& c : found) {
+    Mpc mpc;
+    mpc.delay_s = cir.start_s + c.offset * sample_period_s_;
+    mpc.range_m = mpc.delay_s * core::kSpeedOfLight_mps;
+    mpc.amplitude = c.amplitude;
+    mpcs.push_back(mpc);
+  }
+  std::sort(mpcs.begin(), mpcs.end(), [](const Mpc& a, const Mpc& b) { return a.delay_s < b.delay_s; });
+  return mpcs;
+}
+
+}  // namespace mirage::dsp

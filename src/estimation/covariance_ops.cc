@@ -1,0 +1,71 @@
+// SPDX-License-Identifier: MIT
+#include "mirage/estimation/covariance_ops.h"
+
+#include <cassert>
+
+namespace mirage::estimation {
+
+void CovarianceOps::PropagateBlock(State& state, int offset, const Eigen::MatrixXd& F, const Eigen::MatrixXd& Q,
+                                   double t_s) {
+  const int k = static_cast<int>(F.rows());
+  assert(F.cols() == k && Q.rows() == k && Q.cols() == k && offset + k <= state.dimension());
+  auto& P = state.covariance_;
+  state.mean_.segment(offset, k) = F * state.mean_.segment(offset, k);
+  // Rows then columns: P[b, :] = F P[b, :]; P[:, b] = P[:, b] F^T.
+  const Eigen::MatrixXd rows = F * P.middleRows(offset, k);
+  P.middleRows(offset, k) = rows;
+  const Eigen::MatrixXd cols = P.middleCols(offset, k) * F.transpose();
+  P.middleCols(offset, k) = cols;
+  P.block(offset, offset, k, k) += Q;
+  state.t_s_ = t_s;
+}
+
+void CovarianceOps::JosephUpdate(State& state, const Eigen::MatrixXd& K, const Eigen::MatrixXd& U,
+                                 const Eigen::MatrixXd& S, const Eigen::VectorXd& innovation) {
+  auto& P = state.covariance_;
+  state.mean_ += K * innovation;
+  const Eigen::MatrixXd KUt = K * U.transpose();
+  P -= KUt + KUt.transpose();
+  P.noalias() += K * S * K.transpose();
+  Symmetrize(state);
+}
+
+void CovarianceOps::Symmetrize(State& state) {
+  auto& P = state.covariance_;
+  P = 0.5 * (P + P.transpose()).eval();
+}
+
+void CovarianceOps::Augment(State& state, BlockKey key, const Eigen::VectorXd& x_new, const Eigen::MatrixXd& P_new_x,
+                            const Eigen::MatrixXd& P_new) {
+  const int n = state.dimension();
+  const int k = static_cast<int>(x_new.size());
+  assert(P_new_x.rows() == k && P_new_x.cols() == n && P_new.rows() == k && P_new.cols() == k);
+  state.layout_.Append(key, k);
+  Eigen::VectorXd mean(n + k);
+  mean << state.mean_, x_new;
+  Eigen::MatrixXd P(n + k, n + k);
+  P.topLeftCorner(n, n) = state.covariance_;
+  P.bottomLeftCorner(k, n) = P_new_x;
+  P.topRightCorner(n, k) = P_new_x.transpose();
+  P.bottomRightCorner(k, k) = P_new;
+  state.mean_ = std::move(mean);
+  state.covariance_ = std::move(P);
+}
+
+void CovarianceOps::Marginalize(State& state, BlockKey key) {
+  const Block b = state.layout_.At(key);
+  const int n = state.dimension();
+  const int tail = n - b.offset - b.size;
+  Eigen::VectorXd mean(n - b.size);
+  mean << state.mean_.head(b.offset), state.mean_.tail(tail);
+  Eigen::MatrixXd P(n - b.size, n - b.size);
+  P.topLeftCorner(b.offset, b.offset) = state.covariance_.topLeftCorner(b.offset, b.offset);
+  P.topRightCorner(b.offset, tail) = state.covariance_.topRightCorner(b.offset, tail);
+  P.bottomLeftCorner(tail, b.offset) = state.covariance_.bottomLeftCorner(tail, b.offset);
+  P.bottomRightCorner(tail, tail) = state.covariance_.bottomRightCorner(tail, tail);
+  state.layout_.Remove(key);
+  state.mean_ = std::move(mean);
+  state.covariance_ = std::move(P);
+}
+
+}  // namespace mirage::estimation

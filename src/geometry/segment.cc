@@ -1,0 +1,48 @@
+// SPDX-License-Identifier: MIT
+#include "mirage/geometry/segment.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace mirage::geometry {
+namespace {
+double Cross(const Vec2& u, const Vec2& v) { return u.x() * v.y() - u.y() * v.x(); }
+}  // namespace
+
+std::optional<SegmentCrossing> CrossSegments(const Vec2& p, const Vec2& q, const Vec2& a, const Vec2& b) {
+  const Vec2 r = q - p;
+  const Vec2 s = b - a;
+  const double denom = Cross(r, s);
+  // Relative parallelism threshold: sin(angle) below 1e-12.
+  if (std::abs(denom) <= 1e-12 * r.norm() * s.norm()) return std::nullopt;
+  const Vec2 ap = a - p;
+  const double t = Cross(ap, s) / denom;
+  const double u = Cross(ap, r) / denom;
+  if (t < 0.0 || t > 1.0 || u < 0.0 || u > 1.0) return std::nullopt;
+  return SegmentCrossing{t, u};
+}
+
+bool SegmentHitsCircle(const Vec2& p, const Vec2& q, const Vec2& center_m, double radius_m) {
+  return DistanceToSegment(center_m, p, q) < radius_m;
+}
+
+Vec2 MirrorPoint(const Vec2& x, const Vec2& a, const Vec2& b) {
+  const Vec2 d = (b - a).normalized();
+  const Vec2 n(-d.y(), d.x());
+  return x - 2.0 * (x - a).dot(n) * n;
+}
+
+double SignedDistanceToLine(const Vec2& x, const Vec2& a, const Vec2& b) {
+  const Vec2 d = (b - a).normalized();
+  return Cross(d, x - a);
+}
+
+double DistanceToSegment(const Vec2& x, const Vec2& a, const Vec2& b) {
+  const Vec2 ab = b - a;
+  const double len2 = ab.squaredNorm();
+  if (len2 == 0.0) return (x - a).norm();
+  const double t = std::clamp((x - a).dot(ab) / len2, 0.0, 1.0);
+  return (x - (a + t * ab)).norm();
+}
+
+}  // namespace mirage::geometry

@@ -1,0 +1,113 @@
+// SPDX-License-Identifier: MIT
+#include "mirage/io/plot.h"
+
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "mirage/io/input_error.h"
+#include "mirage/io/report.h"
+
+extern char** environ;
+
+namespace mirage::io {
+namespace {
+
+using nlohmann::json;
+
+std::string Interpreter() {
+  if (const char* env = std::getenv("MIRAGE_PYTHON"); env != nullptr && *env != '\0') return env;
+  if (std::filesystem::exists("/usr/bin/python3")) return "/usr/bin/python3";
+  return "python3";
+}
+
+// Runs argv without a shell (paths may contain anything) and returns the exit status.
+int Run(const std::vector<std::string>& args) {
+  std::vector<char*> argv;
+  for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  pid_t pid = 0;
+  if (posix_spawnp(&pid, argv[0], nullptr, nullptr, argv.data(), environ) != 0) return -1;
+  int status = 0;
+  if (waitpid(pid, &status, 0) < 0) return -1;
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+json PlotData(const Scenario& scenario, const pipeline::MintExperimentResult& result,
+              const pipeline::MintSummary& summary) {
+  const auto& config = scenario.mint;
+  json walls = json::array();
+  for (const auto& w : config.plan.walls()) {
+    walls.push_back({w.start_m.x(), w.start_m.y(), w.end_m.x(), w.end_m.y(), w.reflection_coeff, w.label});
+  }
+  json obstacles = json::array();
+  for (const auto& o : config.plan.obstacles()) obstacles.push_back({o.center_m.x(), o.center_m.y(), o.radius_m});
+  json anchors = json::array();
+  for (std::size_t a = 0; a < config.anchors_m.size(); ++a) {
+    anchors.push_back({config.anchors_m[a].x(), config.anchors_m[a].y(), config.anchor_ids[a]});
+  }
+  json vas = json::array();
+  for (const auto& va : result.known_vas.all()) {
+    if (va.order > 0) vas.push_back({va.position_m.x(), va.position_m.y(), va.order, va.anchor_index});
+  }
+  json trajectories = json::array();
+  for (std::size_t t = 0; t < config.trajectories.size(); ++t) {
+    json runs = json::array();
+    json errors = json::array();
+    json truth = json::array();
+    json ellipses = json::array();
+    const int central = (config.run_grid.nx * config.run_grid.ny) / 2;  // the zero-offset grid point
+    for (const auto& run : result.runs) {
+      if (run.trajectory != static_cast<int>(t)) continue;
+      json est = json::array();
+      for (std::size_t k = 0; k < run.steps.size(); ++k) {
+        const auto& s = run.steps[k];
+        est.push_back({s.estimate_m.x(), s.estimate_m.y()});
+        errors.push_back(s.error_m);
+        if (run.run == central) {
+          truth.push_back({s.truth_m.x(), s.truth_m.y()});
+          if (k % 20 == 0) {
+            ellipses.push_back({s.estimate_m.x(), s.estimate_m.y(), s.covariance_m2(0, 0), s.covariance_m2(0, 1),
+                                s.covariance_m2(1, 1)});
+          }
+        }
+      }
+      runs.push_back({{"run", run.run}, {"diverged", run.diverged}, {"estimate", est}});
+    }
+    trajectories.push_back({{"name", config.trajectories[t].name},
+                            {"truth", truth},
+                            {"central_run", central},
+                            {"runs", runs},
+                            {"errors", errors},
+                            {"ellipses", ellipses}});
+  }
+  return {{"title", config.name},
+          {"walls", walls},
+          {"obstacles", obstacles},
+          {"anchors", anchors},
+          {"vas", vas},
+          {"trajectories", trajectories},
+          {"table", FormatResultTable(scenario, summary)}};
+}
+
+}  // namespace
+
+void WritePlot(const std::string& png_path, const std::string& script_path, const Scenario& scenario,
+               const pipeline::MintExperimentResult& result, const pipeline::MintSummary& summary) {
+  const std::string data_path = png_path + ".json";
+  WriteJson(data_path, PlotData(scenario, result, summary));
+  if (!std::filesystem::exists(script_path)) throw InputError(script_path + ": plotting script not found");
+  const int status = Run({Interpreter(), script_path, data_path, png_path});
+  if (status != 0) {
+    throw InputError(png_path + ": the plot renderer failed (exit " + std::to_string(status) + "); " + Interpreter() +
+                     " needs matplotlib (Debian: python3-matplotlib)");
+  }
+}
+
+}  // namespace mirage::io

@@ -1,0 +1,185 @@
+// SPDX-License-Identifier: MIT
+#include "mirage/io/report.h"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include <fmt/format.h>
+
+#include "mirage/io/input_error.h"
+
+namespace mirage::io {
+namespace {
+
+using nlohmann::json;
+
+json ErrorJson(const eval::ErrorStats& e) {
+  return {{"rmse", e.rmse}, {"mean", e.mean}, {"p50", e.p50}, {"p90", e.p90}, {"p95", e.p95}, {"max", e.max}};
+}
+
+json PebJson(const pipeline::GroupSummary& g) {
+  if (!g.peb_mean_m) return nullptr;
+  return {{"mean", *g.peb_mean_m}, {"p50", *g.peb_p50_m}, {"singular_steps", g.peb_singular_steps}};
+}
+
+json GroupJson(const pipeline::GroupSummary& g) {
+  json j = {{"name", g.name},
+            {"runs", g.runs},
+            {"steps", g.steps},
+            {"position_error_m", ErrorJson(g.error)},
+            {"diverged_runs", g.diverged_runs},
+            {"peb_m", PebJson(g)}};
+  j["rmse_over_mean_peb"] = g.peb_mean_m ? json(g.error.rmse / *g.peb_mean_m) : json(nullptr);
+  return j;
+}
+
+json SinrJson(const std::map<std::string, pipeline::SinrStats>& stats) {
+  json j = json::object();
+  for (const auto& [key, s] : stats) {
+    j[key] = {{"count", s.count}, {"mean", s.mean_db}, {"p10", s.p10_db}, {"p50", s.p50_db}, {"p90", s.p90_db}};
+  }
+  return j;
+}
+
+std::ofstream OpenForWriting(const std::string& path) {
+  const auto parent = std::filesystem::path(path).parent_path();
+  std::error_code ec;
+  if (!parent.empty()) std::filesystem::create_directories(parent, ec);
+  std::ofstream out(path);
+  if (!out) throw InputError(path + ": cannot open for writing");
+  return out;
+}
+
+}  // namespace
+
+json MakeJsonReport(const Scenario& scenario, const pipeline::MintExperimentResult& result,
+                    const pipeline::MintSummary& summary) {
+  const auto& config = scenario.mint;
+  const auto& overall = summary.overall;
+  json j = GroupJson(overall);
+  j.erase("name");
+  j["scenario"] = config.name;
+  j["scenario_file"] = scenario.file;
+  j["method"] = scenario.method;
+  j["seed"] = config.seed;
+  j["runs_per_trajectory"] = config.runs;
+  j["divergence_rule"] = eval::Describe(config.divergence);
+  const double steps = std::max(1, overall.steps);
+  j["timing"] = {{"wall_s", summary.wall_s},
+                 {"steps_per_s", steps / summary.wall_s},
+                 {"us_per_step", 1e6 * summary.wall_s / steps},
+                 {"simulate_us_per_step", 1e6 * summary.simulate_s / steps},
+                 {"estimate_us_per_step", 1e6 * summary.estimate_s / steps},
+                 {"threads", config.threads}};
+  j["sinr_db"] = {{"true", SinrJson(summary.true_sinr)},
+                  {"estimated", SinrJson(summary.estimated_sinr)},
+                  {"estimated_minus_true", SinrJson(summary.sinr_estimate_error)},
+                  {"note", "true: every visible specular path at every step (Eq. 3.25 with the simulated DM and "
+                           "noise); estimated: the tracker's online moment estimate (Eq. 3.26) when it made one; "
+                           "an estimate of SINR 0 is counted as -40 dB"}};
+  json trajectories = json::array();
+  for (const auto& g : summary.trajectories) trajectories.push_back(GroupJson(g));
+  j["trajectories"] = trajectories;
+  j["config"] = {
+      {"pulse_duration_s", config.channel.pulse.duration_s},
+      {"rolloff", config.channel.pulse.rolloff},
+      {"carrier_hz", config.channel.pulse.carrier_hz},
+      {"sample_period_s", config.channel.sample_period_s},
+      {"snr_at_1m_db", config.channel.snr_at_1m_db},
+      {"diffuse_enabled", config.channel.diffuse.enabled},
+      {"diffuse_power_ratio_db", config.channel.diffuse.power_ratio_db},
+      {"channel_max_order", config.channel_max_order},
+      {"max_components", config.mpc.max_components},
+      {"cutoff_m", config.mint.cutoff_m},
+      {"variance_estimation", config.mint.variance.enabled},
+      {"tracker_max_order", config.mint.max_order},
+      {"known_virtual_anchors", result.known_vas.size()},
+  };
+  return j;
+}
+
+std::string FormatResultTable(const Scenario& scenario, const pipeline::MintSummary& summary) {
+  std::string out = fmt::format("mirage run: {} (method {}, seed {}, {} runs per trajectory)\n", scenario.mint.name,
+                                scenario.method, scenario.mint.seed, scenario.mint.runs);
+  out += fmt::format("{:<16} {:>5} {:>6} {:>8} {:>8} {:>8} {:>8} {:>8} {:>8} {:>9} {:>9} {:>9}\n", "trajectory", "runs",
+                     "steps", "rmse_m", "mean_m", "p50_m", "p90_m", "p95_m", "max_m", "diverged", "peb_m", "rmse/peb");
+  const auto row = [&](const pipeline::GroupSummary& g) {
+    const std::string peb = g.peb_mean_m ? fmt::format("{:.4f}", *g.peb_mean_m) : "-";
+    const std::string ratio = g.peb_mean_m ? fmt::format("{:.1f}", g.error.rmse / *g.peb_mean_m) : "-";
+    out += fmt::format("{:<16} {:>5} {:>6} {:>8.4f} {:>8.4f} {:>8.4f} {:>8.4f} {:>8.4f} {:>8.4f} {:>9} {:>9} {:>9}\n",
+                       g.name, g.runs, g.steps, g.error.rmse, g.error.mean, g.error.p50, g.error.p90, g.error.p95,
+                       g.error.max, g.diverged_runs, peb, ratio);
+  };
+  for (const auto& g : summary.trajectories) row(g);
+  if (summary.trajectories.size() > 1) row(summary.overall);
+  out += "SINR (dB)        true p10/p50/p90        estimated p10/p50/p90   est-true p50\n";
+  for (const auto& [key, t] : summary.true_sinr) {
+    std::string est = "-", err = "-";
+    if (const auto it = summary.estimated_sinr.find(key); it != summary.estimated_sinr.end()) {
+      est = fmt::format("{:6.1f} {:6.1f} {:6.1f}", it->second.p10_db, it->second.p50_db, it->second.p90_db);
+    }
+    if (const auto it = summary.sinr_estimate_error.find(key); it != summary.sinr_estimate_error.end()) {
+      err = fmt::format("{:6.1f}", it->second.p50_db);
+    }
+    out += fmt::format("{:<16} {:6.1f} {:6.1f} {:6.1f}    {:<22}  {}\n", key, t.p10_db, t.p50_db, t.p90_db, est, err);
+  }
+  const double steps = std::max(1, summary.overall.steps);
+  out += fmt::format("timing: {:.2f} s wall, {:.0f} steps/s; per step {:.0f} us simulate + {:.0f} us estimate (CPU)\n",
+                     summary.wall_s, steps / summary.wall_s, 1e6 * summary.simulate_s / steps,
+                     1e6 * summary.estimate_s / steps);
+  return out;
+}
+
+void WriteJson(const std::string& path, const nlohmann::json& json) {
+  auto out = OpenForWriting(path);
+  out << json.dump(2) << "\n";
+  if (!out) throw InputError(path + ": write failed");
+}
+
+void WriteCsv(const std::string& dir, const Scenario& scenario, const pipeline::MintExperimentResult& result) {
+  const auto& config = scenario.mint;
+  {
+    auto out = OpenForWriting(dir + "/tracks.csv");
+    out << "trajectory,run,step,t_s,x_true_m,y_true_m,x_est_m,y_est_m,error_m,sigma_x_m,sigma_y_m,peb_m,associations,"
+           "relocalized\n";
+    for (const auto& run : result.runs) {
+      const std::string& name = config.trajectories[static_cast<std::size_t>(run.trajectory)].name;
+      for (std::size_t k = 0; k < run.steps.size(); ++k) {
+        const auto& s = run.steps[k];
+        out << fmt::format("{},{},{},{:.3f},{:.5f},{:.5f},{:.5f},{:.5f},{:.5f},{:.5f},{:.5f},{},{},{}\n", name, run.run, k,
+                           s.t_s, s.truth_m.x(), s.truth_m.y(), s.estimate_m.x(), s.estimate_m.y(), s.error_m,
+                           std::sqrt(s.covariance_m2(0, 0)), std::sqrt(s.covariance_m2(1, 1)),
+                           s.peb_m ? fmt::format("{:.5f}", *s.peb_m) : "", s.associations, s.relocalized ? 1 : 0);
+      }
+    }
+  }
+  {
+    auto out = OpenForWriting(dir + "/runs.csv");
+    out << "trajectory,run,offset_x_m,offset_y_m,steps,rmse_m,p90_m,diverged\n";
+    for (const auto& run : result.runs) {
+      std::vector<double> errors;
+      for (const auto& s : run.steps) errors.push_back(s.error_m);
+      const auto e = eval::ComputeErrorStats(errors);
+      out << fmt::format("{},{},{:.4f},{:.4f},{},{:.5f},{:.5f},{}\n",
+                         config.trajectories[static_cast<std::size_t>(run.trajectory)].name, run.run, run.offset_m.x(),
+                         run.offset_m.y(), run.steps.size(), e.rmse, e.p90, run.diverged ? 1 : 0);
+    }
+  }
+  {
+    auto out = OpenForWriting(dir + "/virtual_anchors.csv");
+    out << "va_id,anchor_id,order,x_m,y_m,walls,reflection_gain\n";
+    for (const auto& va : result.known_vas.all()) {
+      std::string walls;
+      for (const int w : va.walls) {
+        if (!walls.empty()) walls += ' ';
+        walls += std::to_string(w);
+      }
+      out << fmt::format("{},{},{},{:.4f},{:.4f},{},{:.4f}\n", va.id,
+                         config.anchor_ids[static_cast<std::size_t>(va.anchor_index)], va.order, va.position_m.x(),
+                         va.position_m.y(), walls, va.reflection_gain);
+    }
+  }
+}
+
+}  // namespace mirage::io

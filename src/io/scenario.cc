@@ -1,0 +1,282 @@
+// SPDX-License-Identifier: MIT
+#include "mirage/io/scenario.h"
+
+#include <map>
+#include <memory>
+#include <set>
+
+#include <fmt/format.h>
+
+#include "mirage/geometry/trajectory.h"
+#include "mirage/io/yaml_reader.h"
+
+namespace mirage::io {
+namespace {
+
+constexpr double kHuge = 1e9;
+
+// Runs a component's Validate() and reports the first problem against the section's key path.
+template <typename Options>
+void Check(const Options& options, const YamlMap& section) {
+  const auto problems = Validate(options);
+  if (!problems.empty()) {
+    const std::string& p = problems.front();
+    const auto space = p.find(' ');
+    section.Fail(p.substr(0, space), p.substr(space + 1));
+  }
+}
+
+channel::PulseOptions ReadPulse(YamlMap m) {
+  channel::PulseOptions o;
+  o.carrier_hz = m.NumberInRange("carrier_hz", o.carrier_hz, 1.0, 1e12, "Hz");
+  o.rolloff = m.NumberInRange("rolloff", o.rolloff, 0.0, 1.0, "");
+  o.duration_s = m.NumberInRange("duration_s", o.duration_s, 1e-12, 1e-3, "s");
+  m.RejectUnknownKeys();
+  Check(o, m);
+  return o;
+}
+
+channel::DiffuseOptions ReadDiffuse(YamlMap m) {
+  channel::DiffuseOptions o;
+  o.enabled = m.Boolean("enabled", o.enabled);
+  o.power_ratio_db = m.NumberInRange("power_ratio_db", o.power_ratio_db, -200.0, 100.0, "dB");
+  o.decay_s = m.NumberInRange("decay_s", o.decay_s, 1e-12, 1.0, "s");
+  o.rise_s = m.NumberInRange("rise_s", o.rise_s, 1e-12, 1.0, "s");
+  o.rise_weight = m.NumberInRange("rise_weight", o.rise_weight, 0.0, 1.0, "");
+  m.RejectUnknownKeys();
+  Check(o, m);
+  return o;
+}
+
+void ReadChannel(YamlMap m, pipeline::MintExperimentConfig& config) {
+  channel::ChannelOptions& o = config.channel;
+  config.channel_max_order = m.Integer("max_order", config.channel_max_order, 0, geometry::kMaxVirtualAnchorOrder);
+  o.sample_period_s = m.NumberInRange("sample_period_s", o.sample_period_s, 1e-15, 1e-3, "s");
+  o.window_start_s = m.NumberInRange("window_start_s", o.window_start_s, 0.0, 1.0, "s");
+  o.window_length_s = m.NumberInRange("window_length_s", o.window_length_s, 1e-12, 1.0, "s");
+  o.snr_at_1m_db = m.NumberInRange("snr_at_1m_db", o.snr_at_1m_db, -100.0, 200.0, "dB");
+  o.pulse = ReadPulse(m.OptionalMap("pulse"));
+  o.diffuse = ReadDiffuse(m.OptionalMap("diffuse"));
+  m.RejectUnknownKeys();
+  Check(o, m);
+}
+
+dsp::MpcExtractorOptions ReadMpc(YamlMap m) {
+  dsp::MpcExtractorOptions o;
+  o.max_components = m.Integer("max_components", o.max_components, 1, 1000);
+  o.relative_threshold_db = m.NumberInRange("relative_threshold_db", o.relative_threshold_db, -300.0, -1e-9, "dB");
+  o.readjust = m.Boolean("readjust", o.readjust);
+  m.RejectUnknownKeys();
+  Check(o, m);
+  return o;
+}
+
+methods::mint::VaVarianceOptions ReadVariance(YamlMap m) {
+  methods::mint::VaVarianceOptions o;
+  o.enabled = m.Boolean("enabled", o.enabled);
+  o.window_min_m = m.NumberInRange("window_min_m", o.window_min_m, 1e-6, kHuge, "m");
+  o.window_max_m = m.NumberInRange("window_max_m", o.window_max_m, 1e-6, kHuge, "m");
+  o.min_samples = m.Integer("min_samples", o.min_samples, 3, 1'000'000);
+  o.default_sigma_m = m.NumberInRange("default_sigma_m", o.default_sigma_m, 1e-9, kHuge, "m");
+  o.max_variance_factor = m.NumberInRange("max_variance_factor", o.max_variance_factor, 1.0, kHuge, "");
+  o.min_sigma_m = m.NumberInRange("min_sigma_m", o.min_sigma_m, 1e-9, kHuge, "m");
+  o.overlap_distance_m = m.NumberInRange("overlap_distance_m", o.overlap_distance_m, 0.0, kHuge, "m");
+  m.RejectUnknownKeys();
+  Check(o, m);
+  return o;
+}
+
+methods::mint::MintOptions ReadMint(YamlMap m) {
+  methods::mint::MintOptions o;
+  o.cutoff_m = m.NumberInRange("cutoff_m", o.cutoff_m, 1e-9, kHuge, "m");
+  o.range_sigma_m = m.NumberInRange("range_sigma_m", o.range_sigma_m, 1e-9, kHuge, "m");
+  o.initial_position_sigma_m = m.NumberInRange("initial_position_sigma_m", o.initial_position_sigma_m, 1e-9, kHuge, "m");
+  o.initial_velocity_sigma_mps =
+      m.NumberInRange("initial_velocity_sigma_mps", o.initial_velocity_sigma_mps, 1e-9, kHuge, "m/s");
+  o.max_order = m.Integer("max_order", o.max_order, 0, geometry::kMaxVirtualAnchorOrder);
+  o.reassociate = m.Boolean("reassociate", o.reassociate);
+  o.constrain_to_room = m.Boolean("constrain_to_room", o.constrain_to_room);
+  o.innovation_gate_chi2 = m.NumberInRange("innovation_gate_chi2", o.innovation_gate_chi2, 0.0, 1e6, "");
+  {
+    YamlMap motion = m.OptionalMap("motion");
+    o.motion.accel_sigma_mps2 = motion.NumberInRange("accel_sigma_mps2", o.motion.accel_sigma_mps2, 1e-9, kHuge, "m/s^2");
+    motion.RejectUnknownKeys();
+  }
+  o.variance = ReadVariance(m.OptionalMap("variance"));
+  {
+    YamlMap r = m.OptionalMap("relocalization");
+    auto& ro = o.relocalization;
+    ro.enabled = r.Boolean("enabled", ro.enabled);
+    ro.match_tolerance_m = r.NumberInRange("match_tolerance_m", ro.match_tolerance_m, 1e-6, 10.0, "m");
+    ro.max_order = r.Integer("max_order", ro.max_order, 0, geometry::kMaxVirtualAnchorOrder);
+    ro.min_visible = r.Integer("min_visible", ro.min_visible, 1, 10000);
+    ro.lost_score = r.NumberInRange("lost_score", ro.lost_score, 0.0, 1.0, "");
+    ro.lost_steps = r.Integer("lost_steps", ro.lost_steps, 1, 100000);
+    ro.search_radius_m = r.NumberInRange("search_radius_m", ro.search_radius_m, 1e-3, 100.0, "m");
+    ro.search_step_m = r.NumberInRange("search_step_m", ro.search_step_m, 1e-3, 100.0, "m");
+    ro.found_score = r.NumberInRange("found_score", ro.found_score, 0.0, 1.0, "");
+    r.RejectUnknownKeys();
+  }
+  m.RejectUnknownKeys();
+  Check(o, m);
+  return o;
+}
+
+geometry::FloorPlan ReadFloorPlan(YamlMap m, const std::map<std::string, double>& materials) {
+  std::vector<geometry::Wall> walls;
+  for (auto& w : m.MapList("walls", false)) {
+    // A wall entry is either one segment (start_m, end_m) or a polyline (polyline_m, closed).
+    std::vector<Vec2> points;
+    bool closed = false;
+    if (w.Has("polyline_m")) {
+      points = w.Points("polyline_m", 2);
+      closed = w.Boolean("closed", false);
+    } else {
+      points = {w.Point("start_m"), w.Point("end_m")};
+    }
+    double coeff = 0.5;
+    std::string label;
+    if (w.Has("material")) {
+      label = w.String("material");
+      const auto it = materials.find(label);
+      if (it == materials.end()) w.Fail("material", "unknown material '" + label + "' (define it under materials:)");
+      coeff = it->second;
+    }
+    if (w.Has("reflection_coeff")) coeff = w.NumberInRange("reflection_coeff", coeff, 0.0, 1.0, "");
+    if (!(coeff > 0.0)) w.Fail("reflection_coeff", "must be in (0, 1], got 0");
+    label = w.String("label", label);
+    const std::size_t segments = closed ? points.size() : points.size() - 1;
+    for (std::size_t i = 0; i < segments; ++i) {
+      const Vec2& a = points[i];
+      const Vec2& b = points[(i + 1) % points.size()];
+      if ((b - a).norm() < 1e-6) {
+        w.Fail(w.Has("polyline_m") ? "polyline_m" : "end_m",
+               fmt::format("wall segment {} has zero length (from [{}, {}] to [{}, {}] m)", i, FormatValue(a.x()),
+                           FormatValue(a.y()), FormatValue(b.x()), FormatValue(b.y())));
+      }
+      walls.push_back({a, b, coeff, label});
+    }
+    w.RejectUnknownKeys();
+  }
+  std::vector<geometry::CircleObstacle> obstacles;
+  if (m.Has("obstacles")) {
+    for (auto& o : m.MapList("obstacles", true)) {
+      geometry::CircleObstacle obstacle;
+      obstacle.center_m = o.Point("center_m");
+      obstacle.radius_m = o.Number("radius_m");
+      if (!(obstacle.radius_m > 0.0)) o.Fail("radius_m", FormatValue(obstacle.radius_m) + " m must be > 0 m");
+      obstacle.label = o.String("label", std::string());
+      o.RejectUnknownKeys();
+      obstacles.push_back(obstacle);
+    }
+  }
+  m.RejectUnknownKeys();
+  return geometry::FloorPlan(std::move(walls), std::move(obstacles));
+}
+
+void CheckInside(const geometry::FloorPlan& plan, const Vec2& p, YamlMap& where, const std::string& key,
+                 const std::string& what) {
+  if (!plan.Encloses(p)) {
+    where.Fail(key, fmt::format("{} at [{}, {}] m is outside the floor plan (not enclosed by walls)", what,
+                                FormatValue(p.x()), FormatValue(p.y())));
+  }
+  if (plan.InsideObstacle(p)) {
+    where.Fail(key, fmt::format("{} at [{}, {}] m is inside an obstacle", what, FormatValue(p.x()), FormatValue(p.y())));
+  }
+}
+
+}  // namespace
+
+Scenario LoadScenario(const std::string& path, const ScenarioOverrides& overrides) {
+  auto origins = std::make_shared<YamlOrigins>(path);
+  YAML::Node doc = LoadYamlWithExtends(path, *origins);
+  YamlMap root(doc, "", origins);
+
+  Scenario scenario;
+  scenario.file = path;
+  auto& config = scenario.mint;
+  config.name = root.String("name");
+  scenario.method = root.String("method");
+  if (scenario.method != "mint") root.Fail("method", "unknown method '" + scenario.method + "' (available: mint)");
+  config.seed = root.Unsigned("seed", config.seed);
+  config.runs = root.Integer("runs", config.runs, 1, 1'000'000);
+  config.threads = root.Integer("threads", config.threads, 0, 1024);
+  config.perturb_initial_position = root.Boolean("perturb_initial_position", config.perturb_initial_position);
+  {
+    YamlMap grid = root.OptionalMap("run_grid");
+    config.run_grid.nx = grid.Integer("nx", config.run_grid.nx, 1, 1000);
+    config.run_grid.ny = grid.Integer("ny", config.run_grid.ny, 1, 1000);
+    config.run_grid.spacing_m = grid.NumberInRange("spacing_m", config.run_grid.spacing_m, 0.0, 10.0, "m");
+    grid.RejectUnknownKeys();
+  }
+
+  std::map<std::string, double> materials;
+  for (const auto& [name, value] : root.NumberTable("materials")) {
+    if (!(value > 0.0 && value <= 1.0)) {
+      root.Fail("materials", fmt::format("{}: reflection coefficient {} must be in (0, 1]", name, FormatValue(value)));
+    }
+    materials[name] = value;
+  }
+  config.plan = ReadFloorPlan(root.Map("floor_plan"), materials);
+  config.known_plan = config.plan;
+
+  std::set<std::string> ids;
+  for (auto& a : root.MapList("anchors", false)) {
+    const std::string id = a.String("id");
+    if (!ids.insert(id).second) a.Fail("id", "duplicate anchor id '" + id + "'");
+    const Vec2 p = a.Point("position_m");
+    CheckInside(config.plan, p, a, "position_m", "anchor '" + id + "'");
+    a.RejectUnknownKeys();
+    config.anchor_ids.push_back(id);
+    config.anchors_m.push_back(p);
+  }
+  config.known_anchors_m = config.anchors_m;
+
+  for (auto& t : root.MapList("trajectories", false)) {
+    pipeline::TrajectorySpec spec;
+    spec.name = t.String("name");
+    spec.waypoints_m = t.Points("waypoints_m", 2);
+    spec.speed_mps = t.Number("speed_mps", spec.speed_mps);
+    if (!(spec.speed_mps > 0.0)) t.Fail("speed_mps", FormatValue(spec.speed_mps) + " m/s must be > 0 m/s");
+    spec.dt_s = t.Number("dt_s", spec.dt_s);
+    if (!(spec.dt_s > 0.0)) t.Fail("dt_s", FormatValue(spec.dt_s) + " s must be > 0 s (time steps go forward)");
+    for (std::size_t i = 0; i < spec.waypoints_m.size(); ++i) {
+      CheckInside(config.plan, spec.waypoints_m[i], t, "waypoints_m", fmt::format("waypoint {}", i));
+      if (i > 0 && !config.plan.IsLegClear(spec.waypoints_m[i - 1], spec.waypoints_m[i])) {
+        t.Fail("waypoints_m", fmt::format("the leg from waypoint {} to {} crosses a wall or an obstacle", i - 1, i));
+      }
+    }
+    if (geometry::PolylineLength(spec.waypoints_m) < spec.speed_mps * spec.dt_s) {
+      t.Fail("waypoints_m", "the trajectory is shorter than one step (speed_mps * dt_s)");
+    }
+    t.RejectUnknownKeys();
+    config.trajectories.push_back(std::move(spec));
+  }
+
+  ReadChannel(root.OptionalMap("channel"), config);
+  config.mpc = ReadMpc(root.OptionalMap("mpc"));
+  config.mint = ReadMint(root.OptionalMap("mint"));
+  {
+    YamlMap evaluation = root.OptionalMap("evaluation");
+    YamlMap divergence = evaluation.OptionalMap("divergence");
+    config.divergence.threshold_m = divergence.NumberInRange("threshold_m", config.divergence.threshold_m, 1e-9, kHuge, "m");
+    config.divergence.last_fraction =
+        divergence.NumberInRange("last_fraction", config.divergence.last_fraction, 1e-9, 1.0, "");
+    divergence.RejectUnknownKeys();
+    evaluation.RejectUnknownKeys();
+  }
+  root.RejectUnknownKeys();
+
+  if (overrides.runs) {
+    if (*overrides.runs < 1) throw InputError(fmt::format("--runs: {} must be >= 1", *overrides.runs));
+    config.runs = *overrides.runs;
+  }
+  if (overrides.seed) config.seed = *overrides.seed;
+  if (overrides.threads) {
+    if (*overrides.threads < 0) throw InputError(fmt::format("--threads: {} must be >= 0", *overrides.threads));
+    config.threads = *overrides.threads;
+  }
+  return scenario;
+}
+
+}  // namespace mirage::io

@@ -1,0 +1,265 @@
+// SPDX-License-Identifier: MIT
+#include "mirage/io/yaml_reader.h"
+
+#include <cmath>
+#include <filesystem>
+#include <limits>
+
+#include <fmt/format.h>
+
+namespace mirage::io {
+namespace {
+
+std::string JoinPath(const std::string& base, const std::string& key) {
+  if (base.empty()) return key;
+  if (!key.empty() && key.front() == '[') return base + key;
+  return base + "." + key;
+}
+
+std::string ScalarText(const YAML::Node& node) {
+  if (node.IsScalar()) return "'" + node.Scalar() + "'";
+  if (node.IsSequence()) return fmt::format("a list of {}", node.size());
+  if (node.IsMap()) return "a map";
+  return "nothing";
+}
+
+YAML::Node LoadFile(const std::string& path) {
+  if (!std::filesystem::exists(path)) throw InputError(path + ": file not found");
+  try {
+    return YAML::LoadFile(path);
+  } catch (const YAML::ParserException& e) {
+    throw InputError(fmt::format("{}:{}:{}: YAML syntax error: {}", path, e.mark.line + 1, e.mark.column + 1, e.msg));
+  } catch (const YAML::BadFile&) {
+    throw InputError(path + ": cannot read file");
+  }
+}
+
+void Merge(YAML::Node base, const YAML::Node& over, const std::string& path, const std::string& file,
+           YamlOrigins& origins) {
+  for (const auto& kv : over) {
+    const auto key = kv.first.as<std::string>();
+    const std::string key_path = JoinPath(path, key);
+    if (key == "extends" && path.empty()) continue;
+    if (kv.second.IsMap() && base[key] && base[key].IsMap()) {
+      Merge(base[key], kv.second, key_path, file, origins);
+    } else {
+      base[key] = kv.second;
+      origins.Set(key_path, file);
+    }
+  }
+}
+
+}  // namespace
+
+const std::string& YamlOrigins::FileOf(const std::string& path) const {
+  std::string prefix = path;
+  while (true) {
+    const auto it = files_.find(prefix);
+    if (it != files_.end()) return it->second;
+    const auto cut = prefix.find_last_of(".[");
+    if (cut == std::string::npos) return default_file_;
+    prefix = prefix.substr(0, cut);
+  }
+}
+
+YAML::Node LoadYamlWithExtends(const std::string& path, YamlOrigins& origins) {
+  YAML::Node doc = LoadFile(path);
+  if (!doc.IsMap()) throw InputError(path + ":1: the document must be a map of keys");
+  if (!doc["extends"]) return doc;
+  const YAML::Node extends = doc["extends"];
+  if (!extends.IsScalar()) {
+    throw InputError(fmt::format("{}:{}: extends: expected a file name", path, extends.Mark().line + 1));
+  }
+  const auto base_path = (std::filesystem::path(path).parent_path() / extends.as<std::string>()).string();
+  YamlOrigins base_origins(base_path);
+  YAML::Node base = LoadYamlWithExtends(base_path, base_origins);
+  // The merged document's default origin is the base file; every key this file sets is recorded.
+  origins = base_origins;
+  Merge(base, doc, "", path, origins);
+  return base;
+}
+
+YamlMap::YamlMap(YAML::Node node, std::string path, std::shared_ptr<const YamlOrigins> origins)
+    : node_(std::move(node)), path_(std::move(path)), origins_(std::move(origins)) {
+  if (!node_.IsMap()) {
+    throw InputError(fmt::format("{}: {}: expected a map of keys, got {}", Where(node_, path_),
+                                 path_.empty() ? "document" : path_, ScalarText(node_)));
+  }
+}
+
+bool YamlMap::Has(const std::string& key) const { return static_cast<bool>(node_[key]); }
+
+std::string YamlMap::KeyPath(const std::string& key) const { return JoinPath(path_, key); }
+
+std::string YamlMap::Where(const YAML::Node& node, const std::string& key_path) const {
+  const std::string& file = origins_->FileOf(key_path);
+  const auto mark = node.Mark();
+  if (mark.is_null()) return file;
+  return fmt::format("{}:{}", file, mark.line + 1);
+}
+
+void YamlMap::Fail(const std::string& key, const std::string& message) const {
+  const YAML::Node child = node_[key];
+  const YAML::Node& at = child ? child : node_;
+  throw InputError(fmt::format("{}: {}: {}", Where(at, KeyPath(key)), KeyPath(key), message));
+}
+
+YAML::Node YamlMap::Get(const std::string& key) {
+  used_.insert(key);
+  return node_[key];
+}
+
+double YamlMap::ToNumber(const YAML::Node& node, const std::string& key_path) const {
+  double value = 0.0;
+  bool ok = node.IsScalar();
+  if (ok) {
+    try {
+      value = node.as<double>();
+    } catch (const YAML::Exception&) {
+      ok = false;
+    }
+  }
+  if (!ok) throw InputError(fmt::format("{}: {}: expected a number, got {}", Where(node, key_path), key_path, ScalarText(node)));
+  if (!std::isfinite(value)) {
+    throw InputError(fmt::format("{}: {}: expected a finite number, got {}", Where(node, key_path), key_path, ScalarText(node)));
+  }
+  return value;
+}
+
+double YamlMap::Number(const std::string& key, double fallback) {
+  const YAML::Node n = Get(key);
+  if (!n) return fallback;
+  return ToNumber(n, KeyPath(key));
+}
+
+double YamlMap::Number(const std::string& key) {
+  const YAML::Node n = Get(key);
+  if (!n) Fail(key, "missing (required)");
+  return ToNumber(n, KeyPath(key));
+}
+
+double YamlMap::NumberInRange(const std::string& key, double fallback, double lo, double hi, const std::string& unit) {
+  const double v = Number(key, fallback);
+  if (v < lo || v > hi) {
+    Fail(key, fmt::format("{} {} is out of range, expected [{}, {}] {}", FormatValue(v), unit, FormatValue(lo),
+                          FormatValue(hi), unit));
+  }
+  return v;
+}
+
+int YamlMap::Integer(const std::string& key, int fallback, int lo, int hi) {
+  const YAML::Node n = Get(key);
+  if (!n) return fallback;
+  const double v = ToNumber(n, KeyPath(key));
+  if (v != std::floor(v)) Fail(key, "expected an integer, got " + ScalarText(n));
+  if (v < lo || v > hi) Fail(key, fmt::format("{} is out of range, expected an integer in [{}, {}]", FormatValue(v), lo, hi));
+  return static_cast<int>(v);
+}
+
+std::uint64_t YamlMap::Unsigned(const std::string& key, std::uint64_t fallback) {
+  const YAML::Node n = Get(key);
+  if (!n) return fallback;
+  try {
+    if (!n.IsScalar() || n.Scalar().empty() || n.Scalar().front() == '-') throw YAML::Exception({}, "");
+    return n.as<std::uint64_t>();
+  } catch (const YAML::Exception&) {
+    Fail(key, "expected a non-negative integer, got " + ScalarText(n));
+  }
+}
+
+bool YamlMap::Boolean(const std::string& key, bool fallback) {
+  const YAML::Node n = Get(key);
+  if (!n) return fallback;
+  try {
+    if (!n.IsScalar()) throw YAML::Exception({}, "");
+    return n.as<bool>();
+  } catch (const YAML::Exception&) {
+    Fail(key, "expected true or false, got " + ScalarText(n));
+  }
+}
+
+std::string YamlMap::String(const std::string& key, const std::optional<std::string>& fallback) {
+  const YAML::Node n = Get(key);
+  if (!n) {
+    if (!fallback) Fail(key, "missing (required)");
+    return *fallback;
+  }
+  if (!n.IsScalar()) Fail(key, "expected a string, got " + ScalarText(n));
+  return n.Scalar();
+}
+
+Vec2 YamlMap::Point(const std::string& key) {
+  const YAML::Node n = Get(key);
+  if (!n) Fail(key, "missing (required), expected [x, y] in metres");
+  if (!n.IsSequence() || n.size() != 2) Fail(key, "expected 2 numbers [x, y], got " + ScalarText(n));
+  return {ToNumber(n[0], KeyPath(key) + "[0]"), ToNumber(n[1], KeyPath(key) + "[1]")};
+}
+
+std::vector<Vec2> YamlMap::Points(const std::string& key, std::size_t min_count) {
+  const YAML::Node n = Get(key);
+  if (!n) Fail(key, "missing (required), expected a list of [x, y] points in metres");
+  if (!n.IsSequence()) Fail(key, "expected a list of [x, y] points, got " + ScalarText(n));
+  if (n.size() < min_count) Fail(key, fmt::format("expected at least {} points, got {}", min_count, n.size()));
+  std::vector<Vec2> points;
+  for (std::size_t i = 0; i < n.size(); ++i) {
+    const YAML::Node p = n[i];
+    const std::string p_path = fmt::format("{}[{}]", KeyPath(key), i);
+    if (!p.IsSequence() || p.size() != 2) {
+      throw InputError(fmt::format("{}: {}: expected 2 numbers [x, y], got {}", Where(p, p_path), p_path, ScalarText(p)));
+    }
+    points.emplace_back(ToNumber(p[0], p_path + "[0]"), ToNumber(p[1], p_path + "[1]"));
+  }
+  return points;
+}
+
+YamlMap YamlMap::Map(const std::string& key) {
+  const YAML::Node n = Get(key);
+  if (!n) Fail(key, "missing (required)");
+  return YamlMap(n, KeyPath(key), origins_);
+}
+
+YamlMap YamlMap::OptionalMap(const std::string& key) {
+  const YAML::Node n = Get(key);
+  if (!n) return YamlMap(YAML::Node(YAML::NodeType::Map), KeyPath(key), origins_);
+  return YamlMap(n, KeyPath(key), origins_);
+}
+
+std::vector<YamlMap> YamlMap::MapList(const std::string& key, bool allow_empty) {
+  const YAML::Node n = Get(key);
+  if (!n) Fail(key, "missing (required)");
+  if (!n.IsSequence()) Fail(key, "expected a list, got " + ScalarText(n));
+  if (!allow_empty && n.size() == 0) Fail(key, "expected at least one entry");
+  std::vector<YamlMap> maps;
+  for (std::size_t i = 0; i < n.size(); ++i) maps.emplace_back(n[i], fmt::format("{}[{}]", KeyPath(key), i), origins_);
+  return maps;
+}
+
+std::vector<std::pair<std::string, double>> YamlMap::NumberTable(const std::string& key) {
+  const YAML::Node n = Get(key);
+  std::vector<std::pair<std::string, double>> table;
+  if (!n) return table;
+  if (!n.IsMap()) Fail(key, "expected a map of name: number, got " + ScalarText(n));
+  for (const auto& kv : n) {
+    const auto name = kv.first.as<std::string>();
+    table.emplace_back(name, ToNumber(kv.second, KeyPath(key) + "." + name));
+  }
+  return table;
+}
+
+void YamlMap::RejectUnknownKeys() const {
+  for (const auto& kv : node_) {
+    const auto key = kv.first.as<std::string>();
+    if (used_.count(key) != 0 || (path_.empty() && key == "extends")) continue;
+    std::string allowed;
+    for (const auto& k : used_) {
+      if (!allowed.empty()) allowed += ", ";
+      allowed += k;
+    }
+    throw InputError(fmt::format("{}: {}: unknown key (known keys here: {})", Where(kv.first, KeyPath(key)), KeyPath(key),
+                                 allowed.empty() ? "none" : allowed));
+  }
+}
+
+std::string FormatValue(double value) { return fmt::format("{:.6g}", value); }
+
+}  // namespace mirage::io

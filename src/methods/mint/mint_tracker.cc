@@ -1,0 +1,219 @@
+// SPDX-License-Identifier: MIT
+#include "mirage/methods/mint/mint_tracker.h"
+
+#include <cmath>
+#include <limits>
+
+#include "mirage/estimation/meas/va_range.h"
+#include "mirage/estimation/range_association.h"
+#include "mirage/geometry/feasible_region.h"
+#include "mirage/geometry/visibility.h"
+
+namespace mirage::methods::mint {
+
+using estimation::BlockKind;
+
+std::vector<std::string> Validate(const MintOptions& options) {
+  std::vector<std::string> problems;
+  const auto positive = [&](double v, const char* name, const char* unit) {
+    if (!(v > 0.0) || !std::isfinite(v)) problems.push_back(std::string(name) + " must be > 0 " + unit);
+  };
+  positive(options.cutoff_m, "cutoff_m", "m");
+  positive(options.range_sigma_m, "range_sigma_m", "m");
+  positive(options.initial_position_sigma_m, "initial_position_sigma_m", "m");
+  positive(options.initial_velocity_sigma_mps, "initial_velocity_sigma_mps", "m/s");
+  if (options.max_order < 0 || options.max_order > geometry::kMaxVirtualAnchorOrder) {
+    problems.push_back("max_order must be in [0, " + std::to_string(geometry::kMaxVirtualAnchorOrder) + "]");
+  }
+  if (!(options.innovation_gate_chi2 >= 0.0) || !std::isfinite(options.innovation_gate_chi2)) {
+    problems.push_back("innovation_gate_chi2 must be >= 0");
+  }
+  for (const auto& p : estimation::Validate(options.motion)) problems.push_back("motion." + p);
+  for (const auto& p : Validate(options.variance)) problems.push_back("variance." + p);
+  for (const auto& p : Validate(options.relocalization)) problems.push_back("relocalization." + p);
+  return problems;
+}
+
+MintTracker::MintTracker(const MintOptions& options, const geometry::VirtualAnchorSet& vas,
+                         const geometry::FloorPlan& plan, double range_sigma_at_unit_sinr_m)
+    : options_(options), vas_(&vas), plan_(&plan), variance_(options.variance, range_sigma_at_unit_sinr_m) {}
+
+void MintTracker::Initialize(double t_s, const Vec2& p0_m) {
+  estimation::StateLayout layout;
+  layout.Append({BlockKind::kPosition, 0}, 2);
+  layout.Append({BlockKind::kVelocity, 0}, 2);
+  Eigen::Vector4d mean;
+  mean << p0_m, 0.0, 0.0;
+  const double sp2 = options_.initial_position_sigma_m * options_.initial_position_sigma_m;
+  const double sv2 = options_.initial_velocity_sigma_mps * options_.initial_velocity_sigma_mps;
+  const Eigen::Vector4d diag(sp2, sp2, sv2, sv2);
+  state_ = estimation::State(layout, mean, diag.asDiagonal().toDenseMatrix(), t_s);
+  variance_.Reset();
+  previous_position_m_ = p0_m;
+  lost_steps_ = 0;
+}
+
+std::vector<MintTracker::Pairing> MintTracker::Associate(const Reference& reference,
+                                                         std::span<const core::AnchorRanges> measurements,
+                                                         int max_order, double gate, int* visible_count) const {
+  std::vector<Pairing> pairings;
+  const Vec2& at_m = reference.position_m;
+  for (const auto& anchor : measurements) {
+    // Visibility at the reference position (Sec. 3.4: the predicted p^-), expected ranges
+    // (Eq. 3.6) and the innovation variances J P J^T + R of the gate.
+    std::vector<int> visible;
+    std::vector<double> expected_m;
+    std::vector<double> gate_variance_m2;
+    for (const int id : geometry::VisibleVirtualAnchors(*vas_, anchor.anchor_index, *plan_, at_m)) {
+      if ((*vas_)[id].order > max_order) continue;
+      const auto prediction = estimation::PredictVaRange(at_m, (*vas_)[id].position_m);
+      if (!prediction) continue;  // agent on top of the VA: no direction
+      visible.push_back(id);
+      expected_m.push_back(prediction->range_m);
+      const auto& J = prediction->J_range_p;
+      gate_variance_m2.push_back((J * reference.covariance_m2 * J.transpose())(0, 0) + CurrentVariance(id));
+    }
+    if (visible_count != nullptr) *visible_count += static_cast<int>(visible.size());
+    // Cut-off distances |d_i - z_j| (Eq. 3.8); pairs outside the innovation gate are ruled out.
+    const auto n_expected = static_cast<Eigen::Index>(visible.size());
+    const auto n_measured = static_cast<Eigen::Index>(anchor.ranges.size());
+    Eigen::MatrixXd distance(n_expected, n_measured);
+    for (Eigen::Index i = 0; i < n_expected; ++i) {
+      const auto k = static_cast<std::size_t>(i);
+      for (Eigen::Index j = 0; j < n_measured; ++j) {
+        const double nu = anchor.ranges[static_cast<std::size_t>(j)].range_m - expected_m[k];
+        const bool outside = gate > 0.0 && nu * nu > gate * gate_variance_m2[k];
+        distance(i, j) = outside ? std::numeric_limits<double>::infinity() : std::abs(nu);
+      }
+    }
+    const std::vector<int> assignment = estimation::AssociateWithCutoff(distance, options_.cutoff_m);
+    for (std::size_t i = 0; i < visible.size(); ++i) {
+      if (assignment[i] < 0) continue;
+      Pairing p;
+      p.anchor_index = anchor.anchor_index;
+      p.va_id = visible[i];
+      p.measurement = &anchor.ranges[static_cast<std::size_t>(assignment[i])];
+      for (std::size_t k = 0; k < visible.size(); ++k) {
+        if (k != i && std::abs(expected_m[k] - expected_m[i]) < options_.variance.overlap_distance_m) p.overlapped = true;
+      }
+      pairings.push_back(p);
+    }
+  }
+  return pairings;
+}
+
+estimation::UpdateResult MintTracker::Update(estimation::State& state, const std::vector<Pairing>& pairings,
+                                             const std::vector<double>& variances_m2,
+                                             std::vector<MintAssociation>* associations) const {
+  const Vec2 prior_m = state.Mean({BlockKind::kPosition, 0});
+  const int position_offset = state.layout().At({BlockKind::kPosition, 0}).offset;
+  const auto m = static_cast<Eigen::Index>(pairings.size());
+  Eigen::MatrixXd H = Eigen::MatrixXd::Zero(m, state.dimension());  // Eq. (3.19)
+  Eigen::VectorXd innovation(m);
+  Eigen::MatrixXd R = Eigen::MatrixXd::Zero(m, m);
+  Eigen::Index rows = 0;
+  for (std::size_t k = 0; k < pairings.size(); ++k) {
+    const Pairing& p = pairings[k];
+    const auto prediction = estimation::PredictVaRange(prior_m, (*vas_)[p.va_id].position_m);
+    if (!prediction) continue;
+    H.block<1, 2>(rows, position_offset) = prediction->J_range_p;
+    innovation(rows) = p.measurement->range_m - prediction->range_m;  // Eq. (3.20)
+    R(rows, rows) = variances_m2[k];
+    if (associations != nullptr) {
+      MintAssociation a;
+      a.anchor_index = p.anchor_index;
+      a.va_id = p.va_id;
+      a.expected_range_m = prediction->range_m;
+      a.measured_range_m = p.measurement->range_m;
+      a.variance_m2 = variances_m2[k];
+      a.overlapped = p.overlapped;
+      associations->push_back(a);
+    }
+    ++rows;
+  }
+  return estimation::EkfUpdate(state, H.topRows(rows), innovation.head(rows), R.topLeftCorner(rows, rows));
+}
+
+double MintTracker::CurrentVariance(int va_id) const {
+  if (!options_.variance.enabled) return options_.range_sigma_m * options_.range_sigma_m;
+  return variance_.CurrentVariance(va_id);
+}
+
+bool MintTracker::CheckTrackLoss(const Vec2& position_m, std::span<const core::AnchorRanges> measurements) {
+  const auto& reloc = options_.relocalization;
+  const MatchScore score = ScorePosition(*vas_, *plan_, position_m, measurements, reloc);
+  if (score.visible < reloc.min_visible || score.fraction() >= reloc.lost_score) {
+    lost_steps_ = 0;
+    return false;
+  }
+  if (++lost_steps_ < reloc.lost_steps) return false;
+  lost_steps_ = 0;
+  const auto found = SearchPosition(*vas_, *plan_, position_m, measurements, reloc);
+  if (!found) return false;
+  // Restart at the found position as at the start: at rest, initial covariance. The variance
+  // history was gathered along the lost track, so it is dropped too.
+  Initialize(state_.t_s(), *found);
+  return true;
+}
+
+MintStepResult MintTracker::Step(double t_s, std::span<const core::AnchorRanges> measurements) {
+  estimation::PropagateConstantVelocity(state_, 0, t_s, options_.motion);
+  MintStepResult result;
+  Reference reference{state_.Mean({BlockKind::kPosition, 0}), state_.Covariance({BlockKind::kPosition, 0})};
+
+  if (options_.reassociate) {
+    // Stage 1: the LOS ranges alone, with the variances known so far. Their posterior is the
+    // reference at which all VAs are associated in stage 2. No innovation gate here: right
+    // after a corner the prediction is off by more than its covariance admits, and the LOS,
+    // the strongest and earliest path, is the range that can tell.
+    const auto los = Associate(reference, measurements, 0, 0.0, nullptr);
+    if (!los.empty()) {
+      std::vector<double> variances;
+      for (const auto& p : los) variances.push_back(CurrentVariance(p.va_id));
+      estimation::State trial = state_;
+      if (Update(trial, los, variances, nullptr).applied) {
+        reference = {trial.Mean({BlockKind::kPosition, 0}), trial.Covariance({BlockKind::kPosition, 0})};
+      }
+    }
+  }
+
+  const auto pairings =
+      Associate(reference, measurements, options_.max_order, options_.innovation_gate_chi2, &result.visible_count);
+  std::vector<double> variances;
+  std::vector<std::optional<double>> sinrs;
+  for (const auto& p : pairings) {
+    if (options_.variance.enabled) {
+      // Sec. 3.6: amplitudes of overlapping paths are not used, their variance falls back.
+      const auto& amplitude = p.measurement->amplitude;
+      if (amplitude && !p.overlapped) variance_.AddSample(p.va_id, reference.position_m, *amplitude);
+      const VaVariance v = variance_.Variance(p.va_id, !p.overlapped && amplitude.has_value());
+      variances.push_back(v.variance_m2);
+      sinrs.push_back(v.sinr);
+    } else {
+      variances.push_back(options_.range_sigma_m * options_.range_sigma_m);
+      sinrs.emplace_back();
+    }
+  }
+  result.update = Update(state_, pairings, variances, &result.associations);
+  for (std::size_t k = 0; k < result.associations.size() && k < sinrs.size(); ++k) result.associations[k].sinr = sinrs[k];
+
+  if (options_.constrain_to_room && previous_position_m_) {
+    const Vec2 estimate_m = state_.Mean({BlockKind::kPosition, 0});
+    const Vec2 feasible_m = geometry::ConstrainMove(*plan_, *previous_position_m_, estimate_m);
+    if (feasible_m != estimate_m) {
+      state_.SetMean({BlockKind::kPosition, 0}, feasible_m);
+      result.constrained = true;
+    }
+  }
+  if (options_.relocalization.enabled) {
+    result.relocalized = CheckTrackLoss(state_.Mean({BlockKind::kPosition, 0}), measurements);
+  }
+  previous_position_m_ = state_.Mean({BlockKind::kPosition, 0});
+
+  result.position_m = state_.Mean({BlockKind::kPosition, 0});
+  result.velocity_mps = state_.Mean({BlockKind::kVelocity, 0});
+  result.position_covariance = state_.Covariance({BlockKind::kPosition, 0});
+  return result;
+}
+
+}  // namespace mirage::methods::mint

@@ -1,0 +1,184 @@
+// SPDX-License-Identifier: MIT
+#include "mirage/pipeline/mint_experiment.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <memory>
+#include <thread>
+
+#include "mirage/channel/cir_synthesizer.h"
+#include "mirage/channel/specular_path.h"
+#include "mirage/core/rng.h"
+#include "mirage/core/units.h"
+#include "mirage/dsp/mpc_extractor.h"
+#include "mirage/eval/error_stats.h"
+#include "mirage/eval/position_error_bound.h"
+#include "mirage/geometry/trajectory.h"
+#include "mirage/methods/mint/mint_tracker.h"
+
+namespace mirage::pipeline {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double Seconds(Clock::duration d) { return std::chrono::duration<double>(d).count(); }
+
+// Identifies a VA across two VA sets built from corresponding walls: anchor and wall sequence.
+using VaKey = std::pair<int, std::vector<int>>;
+
+struct Shared {
+  const MintExperimentConfig* config = nullptr;
+  geometry::VirtualAnchorSet channel_vas;
+  geometry::VirtualAnchorSet known_vas;
+  std::vector<int> known_to_channel;  // known VA id -> channel VA id, or -1
+  std::unique_ptr<channel::CirSynthesizer> synthesizer;
+  std::unique_ptr<dsp::MpcExtractor> extractor;
+};
+
+RunRecord RunOne(const Shared& shared, int trajectory, int run) {
+  const MintExperimentConfig& config = *shared.config;
+  const TrajectorySpec& spec = config.trajectories[static_cast<std::size_t>(trajectory)];
+  const auto stream = static_cast<std::uint64_t>(trajectory) * 1'000'003ULL + static_cast<std::uint64_t>(run);
+  const core::Rng run_rng(config.seed, stream);
+  core::Rng diffuse_rng = run_rng.Substream("diffuse");
+  core::Rng noise_rng = run_rng.Substream("noise");
+  core::Rng init_rng = run_rng.Substream("init");
+
+  RunRecord record;
+  record.trajectory = trajectory;
+  record.run = run;
+  record.offset_m = RunOffset(config.run_grid, run);
+  const auto samples = geometry::SampleTrajectory(spec.waypoints_m, spec.speed_mps, spec.dt_s, record.offset_m);
+
+  const double sigma1_m = shared.synthesizer->pulse().range_sigma_at_unit_sinr_m();
+  methods::mint::MintTracker tracker(config.mint, shared.known_vas, config.known_plan, sigma1_m);
+  // The thesis starts at the known start point with variance sigma_i^2 (Tab. 3.1); optionally
+  // the start is drawn from that distribution instead.
+  const double sigma_i = config.mint.initial_position_sigma_m;
+  const Vec2 start_error = Vec2(init_rng.Normal(0.0, sigma_i), init_rng.Normal(0.0, sigma_i));
+  const Vec2 p0 = samples.front().position_m + (config.perturb_initial_position ? start_error : Vec2(Vec2::Zero()));
+  tracker.Initialize(samples.front().t_s, p0);
+
+  const int anchors = static_cast<int>(config.anchors_m.size());
+  std::vector<core::AnchorRanges> measurements(static_cast<std::size_t>(anchors));
+  std::vector<eval::RangeInformation> information;
+  std::map<int, std::size_t> sinr_index_by_channel_va;  // channel VA id -> index in record.sinr (this step)
+  record.steps.reserve(samples.size());
+
+  for (const auto& sample : samples) {
+    const auto t_sim = Clock::now();
+    information.clear();
+    sinr_index_by_channel_va.clear();
+    std::vector<channel::SynthesizedCir> cirs;
+    cirs.reserve(static_cast<std::size_t>(anchors));
+    for (int a = 0; a < anchors; ++a) {
+      const auto paths = channel::ComputeSpecularPaths(shared.channel_vas, a, config.plan, sample.position_m,
+                                                       config.channel.pulse.carrier_hz);
+      const double los_distance_m =
+          std::max((sample.position_m - config.anchors_m[static_cast<std::size_t>(a)]).norm(), 0.01);
+      cirs.push_back(shared.synthesizer->Synthesize(paths, los_distance_m, diffuse_rng, noise_rng));
+      for (const auto& truth : cirs.back().paths) {
+        information.push_back({shared.channel_vas[truth.va_id].position_m, truth.sinr});
+        sinr_index_by_channel_va[truth.va_id] = record.sinr.size();
+        record.sinr.push_back({truth.order, core::PowerRatioToDb(truth.sinr), std::nullopt});
+      }
+    }
+    const auto t_est = Clock::now();
+    for (int a = 0; a < anchors; ++a) {
+      auto& m = measurements[static_cast<std::size_t>(a)];
+      m.anchor_index = a;
+      m.ranges.clear();
+      for (const auto& mpc : shared.extractor->Extract(cirs[static_cast<std::size_t>(a)].cir)) {
+        m.ranges.push_back({mpc.range_m, std::abs(mpc.amplitude)});
+      }
+    }
+    const auto step = tracker.Step(sample.t_s, measurements);
+    const auto t_end = Clock::now();
+    record.simulate_s += Seconds(t_est - t_sim);
+    record.estimate_s += Seconds(t_end - t_est);
+
+    for (const auto& association : step.associations) {
+      if (!association.sinr) continue;
+      const int channel_id = shared.known_to_channel[static_cast<std::size_t>(association.va_id)];
+      const auto it = sinr_index_by_channel_va.find(channel_id);
+      if (it == sinr_index_by_channel_va.end()) continue;  // associated a VA the channel does not have now
+      // SINR 0 ("zero or complex") is reported at -40 dB so that it stays a finite statistic.
+      record.sinr[it->second].estimated_db = core::PowerRatioToDb(std::max(*association.sinr, 1e-4));
+    }
+
+    StepRecord s;
+    s.t_s = sample.t_s;
+    s.truth_m = sample.position_m;
+    s.estimate_m = step.position_m;
+    s.covariance_m2 = step.position_covariance;
+    s.error_m = (step.position_m - sample.position_m).norm();
+    s.peb_m = eval::PositionErrorBound(sample.position_m, information, sigma1_m);
+    s.associations = static_cast<int>(step.associations.size());
+    s.relocalized = step.relocalized;
+    record.steps.push_back(s);
+  }
+  std::vector<double> errors;
+  errors.reserve(record.steps.size());
+  for (const auto& s : record.steps) errors.push_back(s.error_m);
+  record.diverged = eval::IsDiverged(errors, config.divergence);
+  return record;
+}
+
+}  // namespace
+
+Vec2 RunOffset(const RunGrid& grid, int run) {
+  const int cells = grid.nx * grid.ny;
+  const int k = run % cells;
+  const int ix = k % grid.nx;
+  const int iy = k / grid.nx;
+  return {(ix - 0.5 * (grid.nx - 1)) * grid.spacing_m, (iy - 0.5 * (grid.ny - 1)) * grid.spacing_m};
+}
+
+MintExperimentResult RunMintExperiment(const MintExperimentConfig& config, const ProgressCallback& progress) {
+  const auto t_start = Clock::now();
+  Shared shared;
+  shared.config = &config;
+  shared.channel_vas = geometry::VirtualAnchorSet::Generate(config.anchors_m, config.plan, config.channel_max_order);
+  shared.known_vas = geometry::VirtualAnchorSet::Generate(config.known_anchors_m, config.known_plan, config.mint.max_order);
+  std::map<VaKey, int> channel_by_key;
+  for (const auto& va : shared.channel_vas.all()) channel_by_key[{va.anchor_index, va.walls}] = va.id;
+  for (const auto& va : shared.known_vas.all()) {
+    const auto it = channel_by_key.find({va.anchor_index, va.walls});
+    shared.known_to_channel.push_back(it == channel_by_key.end() ? -1 : it->second);
+  }
+  shared.synthesizer = std::make_unique<channel::CirSynthesizer>(config.channel);
+  shared.extractor = std::make_unique<dsp::MpcExtractor>(config.mpc, shared.synthesizer->pulse(),
+                                                         shared.synthesizer->sample_count(),
+                                                         config.channel.sample_period_s);
+
+  const int trajectories = static_cast<int>(config.trajectories.size());
+  const int total = trajectories * config.runs;
+  MintExperimentResult result;
+  result.runs.resize(static_cast<std::size_t>(total));
+  std::atomic<int> next{0};
+  std::atomic<int> finished{0};
+  const auto worker = [&]() {
+    for (int job = next++; job < total; job = next++) {
+      result.runs[static_cast<std::size_t>(job)] = RunOne(shared, job / config.runs, job % config.runs);
+      const int done = ++finished;
+      if (progress) progress(done, total);
+    }
+  };
+  int threads = config.threads > 0 ? config.threads : static_cast<int>(std::thread::hardware_concurrency());
+  threads = std::clamp(threads, 1, std::max(1, total));
+  if (threads == 1) {
+    worker();
+  } else {
+    std::vector<std::thread> pool;
+    for (int i = 0; i < threads; ++i) pool.emplace_back(worker);
+    for (auto& t : pool) t.join();
+  }
+  result.known_vas = std::move(shared.known_vas);
+  result.wall_s = Seconds(Clock::now() - t_start);
+  return result;
+}
+
+}  // namespace mirage::pipeline

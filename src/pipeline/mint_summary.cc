@@ -1,0 +1,79 @@
+// SPDX-License-Identifier: MIT
+#include "mirage/pipeline/mint_summary.h"
+
+#include <numeric>
+
+namespace mirage::pipeline {
+namespace {
+
+SinrStats Stats(const std::vector<double>& values_db) {
+  SinrStats s;
+  s.count = values_db.size();
+  if (values_db.empty()) return s;
+  s.mean_db = std::accumulate(values_db.begin(), values_db.end(), 0.0) / static_cast<double>(values_db.size());
+  s.p10_db = eval::Percentile(values_db, 10.0);
+  s.p50_db = eval::Percentile(values_db, 50.0);
+  s.p90_db = eval::Percentile(values_db, 90.0);
+  return s;
+}
+
+GroupSummary Group(const std::string& name, const std::vector<const RunRecord*>& runs) {
+  GroupSummary g;
+  g.name = name;
+  g.runs = static_cast<int>(runs.size());
+  std::vector<double> errors, pebs;
+  for (const RunRecord* run : runs) {
+    g.steps += static_cast<int>(run->steps.size());
+    if (run->diverged) ++g.diverged_runs;
+    for (const auto& s : run->steps) {
+      errors.push_back(s.error_m);
+      if (s.peb_m) {
+        pebs.push_back(*s.peb_m);
+      } else {
+        ++g.peb_singular_steps;
+      }
+    }
+  }
+  g.error = eval::ComputeErrorStats(errors);
+  if (!pebs.empty()) {
+    g.peb_mean_m = std::accumulate(pebs.begin(), pebs.end(), 0.0) / static_cast<double>(pebs.size());
+    g.peb_p50_m = eval::Percentile(pebs, 50.0);
+  }
+  return g;
+}
+
+}  // namespace
+
+std::string OrderName(int order) { return order == 0 ? "los" : "order" + std::to_string(order); }
+
+MintSummary Summarize(const MintExperimentConfig& config, const MintExperimentResult& result) {
+  MintSummary summary;
+  std::vector<const RunRecord*> all;
+  std::vector<std::vector<const RunRecord*>> by_trajectory(config.trajectories.size());
+  std::map<std::string, std::vector<double>> true_db, estimated_db, error_db;
+  for (const auto& run : result.runs) {
+    all.push_back(&run);
+    by_trajectory[static_cast<std::size_t>(run.trajectory)].push_back(&run);
+    summary.simulate_s += run.simulate_s;
+    summary.estimate_s += run.estimate_s;
+    for (const auto& s : run.sinr) {
+      const std::string key = OrderName(s.order);
+      true_db[key].push_back(s.true_db);
+      if (s.estimated_db) {
+        estimated_db[key].push_back(*s.estimated_db);
+        error_db[key].push_back(*s.estimated_db - s.true_db);
+      }
+    }
+  }
+  summary.overall = Group("all", all);
+  for (std::size_t t = 0; t < config.trajectories.size(); ++t) {
+    summary.trajectories.push_back(Group(config.trajectories[t].name, by_trajectory[t]));
+  }
+  for (const auto& [key, values] : true_db) summary.true_sinr[key] = Stats(values);
+  for (const auto& [key, values] : estimated_db) summary.estimated_sinr[key] = Stats(values);
+  for (const auto& [key, values] : error_db) summary.sinr_estimate_error[key] = Stats(values);
+  summary.wall_s = result.wall_s;
+  return summary;
+}
+
+}  // namespace mirage::pipeline

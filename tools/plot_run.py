@@ -1,0 +1,93 @@
+#!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
+"""Renders the picture of a `mirage run --plot FILE`: floor plan, anchors and VAs, true and
+estimated trajectories with error ellipses (x20), and the error CDFs. Reads FILE.json written by
+the CLI. Usage: plot_run.py DATA.json OUT.png"""
+import json
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+from matplotlib.patches import Circle, Ellipse  # noqa: E402
+
+COLORS = ["tab:blue", "tab:orange", "tab:green", "tab:purple", "tab:brown"]
+
+
+def draw_room(ax, data):
+    for x1, y1, x2, y2, coeff, _label in data["walls"]:
+        ax.plot([x1, x2], [y1, y2], color=plt.cm.Greys(0.35 + 0.65 * coeff), lw=2.0, solid_capstyle="butt")
+    for cx, cy, r in data["obstacles"]:
+        ax.add_patch(Circle((cx, cy), r, facecolor="0.6", edgecolor="k", lw=0.8))
+    for x, y, name in data["anchors"]:
+        ax.plot(x, y, "k^", ms=9)
+        ax.annotate(name, (x, y), textcoords="offset points", xytext=(5, 5), fontsize=9)
+
+
+def main(data_path, out_path):
+    with open(data_path, encoding="utf-8") as f:
+        data = json.load(f)
+    fig, axes = plt.subplots(1, 3, figsize=(18, 6.5), gridspec_kw={"width_ratios": [1.1, 1.1, 1.0]})
+
+    ax = axes[0]
+    draw_room(ax, data)
+    for t, traj in enumerate(data["trajectories"]):
+        color = COLORS[t % len(COLORS)]
+        for run in traj["runs"]:
+            est = np.array(run["estimate"])
+            if len(est):
+                ax.plot(est[:, 0], est[:, 1], color=color, lw=0.5, alpha=0.35)
+        truth = np.array(traj["truth"])
+        if len(truth):
+            ax.plot(truth[:, 0], truth[:, 1], "k--", lw=1.2)
+            ax.plot(truth[0, 0], truth[0, 1], "ko", ms=5)
+        for x, y, sxx, sxy, syy in traj["ellipses"]:
+            vals, vecs = np.linalg.eigh(np.array([[sxx, sxy], [sxy, syy]]))
+            vals = np.maximum(vals, 0.0)
+            angle = np.degrees(np.arctan2(vecs[1, 1], vecs[0, 1]))
+            ax.add_patch(Ellipse((x, y), 2 * 20 * np.sqrt(vals[1]), 2 * 20 * np.sqrt(vals[0]), angle=angle,
+                                 fill=False, color=color, lw=0.8))
+        ax.plot([], [], color=color, label=f"{traj['name']} (estimates, all runs)")
+    ax.plot([], [], "k--", label="truth (central run)")
+    ax.set_aspect("equal")
+    ax.set_xlabel("x (m)")
+    ax.set_ylabel("y (m)")
+    ax.set_title(f"{data['title']}: tracks, 1-sigma ellipses x20 every 20th step")
+    ax.legend(loc="upper right", fontsize=7)
+
+    ax = axes[1]
+    draw_room(ax, data)
+    vas = np.array([v[:3] for v in data["vas"]]) if data["vas"] else np.zeros((0, 3))
+    markers = {1: ("o", 12), 2: (".", 3), 3: (".", 1)}
+    for order in sorted(set(vas[:, 2].astype(int))) if len(vas) else []:
+        sel = vas[vas[:, 2] == order]
+        m, s = markers.get(order, (".", 1))
+        ax.scatter(sel[:, 0], sel[:, 1], marker=m, s=s, label=f"order-{order} VAs ({len(sel)})", alpha=0.7)
+    ax.set_aspect("equal")
+    ax.set_xlabel("x (m)")
+    ax.set_title("floor plan and virtual anchors")
+    ax.legend(loc="upper right", fontsize=7)
+
+    ax = axes[2]
+    for t, traj in enumerate(data["trajectories"]):
+        e = np.sort(np.array(traj["errors"]))
+        if len(e):
+            ax.plot(e, np.arange(1, len(e) + 1) / len(e), color=COLORS[t % len(COLORS)], label=traj["name"])
+    ax.axhline(0.9, color="0.5", lw=0.6, ls=":")
+    ax.set_xscale("log")
+    ax.set_xlabel("position error (m)")
+    ax.set_ylabel("CDF over all steps and runs")
+    ax.set_title("error CDF")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(loc="lower right", fontsize=8)
+    fig.text(0.01, 0.005, data["table"], family="monospace", fontsize=6.5, va="bottom")
+    fig.tight_layout(rect=(0, 0.17, 1, 1))
+    fig.savefig(out_path, dpi=120)
+
+
+if __name__ == "__main__":
+    if len(sys.argv) != 3:
+        sys.exit("usage: plot_run.py DATA.json OUT.png")
+    main(sys.argv[1], sys.argv[2])
