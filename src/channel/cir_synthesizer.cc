@@ -1,7 +1,6 @@
 // SPDX-License-Identifier: MIT
 #include "mirage/channel/cir_synthesizer.h"
 
-#include <bit>
 #include <cmath>
 
 #include "mirage/core/constants.h"
@@ -21,7 +20,7 @@ int GuardSamples(const ChannelOptions& options) {
 }
 
 std::size_t FftSize(const ChannelOptions& options) {
-  return std::bit_ceil(static_cast<std::size_t>(SampleCount(options) + 2 * GuardSamples(options)));
+  return core::NextFastFftSize(static_cast<std::size_t>(SampleCount(options) + 2 * GuardSamples(options)));
 }
 
 }  // namespace

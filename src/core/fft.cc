@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "mirage/core/fft.h"
 
+#include <algorithm>
 #include <cassert>
 #include <mutex>
 #include <utility>
@@ -32,6 +33,16 @@ void Destroy(void* plan) {
 }
 
 }  // namespace
+
+std::size_t NextFastFftSize(std::size_t n) {
+  for (std::size_t candidate = std::max<std::size_t>(n, 1);; ++candidate) {
+    std::size_t rest = candidate;
+    for (const std::size_t factor : {2U, 3U, 5U}) {
+      while (rest % factor == 0) rest /= factor;
+    }
+    if (rest == 1) return candidate;
+  }
+}
 
 Fft::Fft(std::size_t size)
     : size_(size), forward_plan_(MakePlan(size, FFTW_FORWARD)), inverse_plan_(MakePlan(size, FFTW_BACKWARD)) {

@@ -2,7 +2,6 @@
 #include "mirage/dsp/mpc_extractor.h"
 
 #include <algorithm>
-#include <bit>
 #include <cassert>
 #include <cmath>
 
@@ -10,6 +9,25 @@
 #include "mirage/core/units.h"
 
 namespace mirage::dsp {
+namespace {
+
+// Autocorrelation table resolution: entries per sample period (linear interpolation between).
+constexpr int kTableOversampling = 32;
+// Samples per block of the running argmax.
+constexpr int kBlock = 32;
+// Components are subtracted out to where |R| falls below this; the truncation leaves residues
+// 60 dB below the component, below the -30 dB default stopping threshold.
+constexpr double kSupportThreshold = 1e-3;
+
+int SupportSamples(const channel::RaisedCosinePulse& pulse, double sample_period_s) {
+  int support = 1;
+  for (int n = 1; n * sample_period_s <= pulse.autocorrelation_support_s(); ++n) {
+    if (std::abs(pulse.Autocorrelation(n * sample_period_s)) >= kSupportThreshold) support = n + 1;
+  }
+  return support;
+}
+
+}  // namespace
 
 std::vector<std::string> Validate(const MpcExtractorOptions& options) {
   std::vector<std::string> problems;
@@ -29,9 +47,15 @@ MpcExtractor::MpcExtractor(const MpcExtractorOptions& options, const channel::Ra
       sample_count_(sample_count),
       sample_period_s_(sample_period_s),
       threshold_ratio_(core::DbToPowerRatio(options.relative_threshold_db)),
-      support_samples_(static_cast<int>(std::ceil(pulse.autocorrelation_support_s() / sample_period_s))),
-      // Zero padding by the template support keeps the circular correlation from wrapping.
-      fft_(std::bit_ceil(static_cast<std::size_t>(sample_count + 2 * support_samples_ + 2))) {
+      support_samples_(SupportSamples(pulse, sample_period_s)),
+      // Zero padding by 32 pulse durations keeps the circular correlation from wrapping: the
+      // template's tails are below 1e-6 there.
+      fft_(core::NextFastFftSize(static_cast<std::size_t>(
+          sample_count + static_cast<int>(std::ceil(32.0 * pulse.options().duration_s / sample_period_s))))) {
+  autocorrelation_.resize(static_cast<std::size_t>((support_samples_ + 2) * kTableOversampling));
+  for (std::size_t i = 0; i < autocorrelation_.size(); ++i) {
+    autocorrelation_[i] = pulse_.Autocorrelation(static_cast<double>(i) * sample_period_s_ / kTableOversampling);
+  }
   const std::size_t m = fft_.size();
   const double df_hz = 1.0 / (static_cast<double>(m) * sample_period_s_);
   template_spectrum_.resize(m);
@@ -71,32 +95,57 @@ MpcExtractor::Component MpcExtractor::Refine(const std::vector<Complex>& y, int 
   return c;
 }
 
-void MpcExtractor::AddScaled(std::vector<Complex>& y, const Component& c, double sign) const {
+void MpcExtractor::AddScaled(Residual& residual, const Component& c, double sign) const {
   const int center = static_cast<int>(std::lround(c.offset));
   const int lo = std::max(0, center - support_samples_);
   const int hi = std::min(sample_count_ - 1, center + support_samples_);
+  const Complex scaled = sign * c.amplitude;
   for (int n = lo; n <= hi; ++n) {
-    y[static_cast<std::size_t>(n)] += sign * c.amplitude * pulse_.Autocorrelation((n - c.offset) * sample_period_s_);
+    const double x = std::abs(n - c.offset) * kTableOversampling;
+    const auto i = static_cast<std::size_t>(x);
+    const double frac = x - static_cast<double>(i);
+    const double r = autocorrelation_[i] + frac * (autocorrelation_[i + 1] - autocorrelation_[i]);
+    auto& v = residual.y[static_cast<std::size_t>(n)];
+    v += scaled * r;
+    residual.energy[static_cast<std::size_t>(n)] = std::norm(v);
+  }
+  UpdateBlocks(residual, lo, hi);
+}
+
+void MpcExtractor::UpdateBlocks(Residual& residual, int lo, int hi) const {
+  for (int b = lo / kBlock; b <= hi / kBlock; ++b) {
+    const int begin = b * kBlock;
+    const int end = std::min(sample_count_, begin + kBlock);
+    int best = begin;
+    for (int n = begin + 1; n < end; ++n) {
+      if (residual.energy[static_cast<std::size_t>(n)] > residual.energy[static_cast<std::size_t>(best)]) best = n;
+    }
+    residual.block_argmax[static_cast<std::size_t>(b)] = best;
   }
 }
 
+int MpcExtractor::ArgMax(const Residual& residual) const {
+  int best = residual.block_argmax.front();
+  for (const int candidate : residual.block_argmax) {
+    if (residual.energy[static_cast<std::size_t>(candidate)] > residual.energy[static_cast<std::size_t>(best)]) best = candidate;
+  }
+  return best;
+}
+
 std::vector<Mpc> MpcExtractor::Extract(const core::Cir& cir) const {
-  std::vector<Complex> residual = MatchedFilter(cir);
+  Residual residual;
+  residual.y = MatchedFilter(cir);
+  residual.energy.resize(residual.y.size());
+  for (std::size_t n = 0; n < residual.y.size(); ++n) residual.energy[n] = std::norm(residual.y[n]);
+  residual.block_argmax.resize(static_cast<std::size_t>((sample_count_ + kBlock - 1) / kBlock));
+  UpdateBlocks(residual, 0, sample_count_ - 1);
+
   std::vector<Component> found;
   found.reserve(static_cast<std::size_t>(options_.max_components));
   double reference_energy = 0.0;
   for (int k = 0; k < options_.max_components; ++k) {
     // Search (Eq. 3.1): the strongest remaining peak of the matched-filter output.
-    int best = 0;
-    double best_energy = -1.0;
-    for (int n = 0; n < sample_count_; ++n) {
-      const double e = std::norm(residual[static_cast<std::size_t>(n)]);
-      if (e > best_energy) {
-        best_energy = e;
-        best = n;
-      }
-    }
-    const Component c = Refine(residual, best);
+    const Component c = Refine(residual.y, ArgMax(residual));
     const double energy = std::norm(c.amplitude);
     if (k == 0) reference_energy = energy;
     if (energy <= 0.0 || energy < threshold_ratio_ * reference_energy) break;
@@ -104,18 +153,17 @@ std::vector<Mpc> MpcExtractor::Extract(const core::Cir& cir) const {
     AddScaled(residual, c, -1.0);
     found.push_back(c);
     if (!options_.readjust) continue;
-    // Readjust the earlier components that overlap the new one.
+    // Readjust the earlier components that overlap the new one: add each back, search its peak
+    // again within +-2 samples, and subtract the new estimate.
     for (std::size_t j = 0; j + 1 < found.size(); ++j) {
       if (std::abs(found[j].offset - c.offset) > support_samples_) continue;
       AddScaled(residual, found[j], +1.0);
-      const int center = static_cast<int>(std::lround(found[j].offset));
-      int local_best = std::clamp(center, 0, sample_count_ - 1);
+      const int center = std::clamp(static_cast<int>(std::lround(found[j].offset)), 0, sample_count_ - 1);
+      int local_best = center;
       for (int n = std::max(0, center - 2); n <= std::min(sample_count_ - 1, center + 2); ++n) {
-        if (std::norm(residual[static_cast<std::size_t>(n)]) > std::norm(residual[static_cast<std::size_t>(local_best)])) {
-          local_best = n;
-        }
+        if (residual.energy[static_cast<std::size_t>(n)] > residual.energy[static_cast<std::size_t>(local_best)]) local_best = n;
       }
-      found[j] = Refine(residual, local_best);
+      found[j] = Refine(residual.y, local_best);
       AddScaled(residual, found[j], -1.0);
     }
   }

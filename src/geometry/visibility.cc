@@ -59,9 +59,10 @@ bool IsVisible(const VirtualAnchorSet& vas, int va_id, const FloorPlan& plan, co
 }
 
 std::vector<int> VisibleVirtualAnchors(const VirtualAnchorSet& vas, int anchor_index, const FloorPlan& plan,
-                                       const Vec2& agent_m) {
+                                       const Vec2& agent_m, int max_order) {
   std::vector<int> visible;
   for (const int id : vas.ForAnchor(anchor_index)) {
+    if (vas[id].order > max_order) break;  // an anchor's VAs are sorted by order
     if (Trace(vas, id, plan, agent_m, nullptr)) visible.push_back(id);
   }
   return visible;

@@ -10,6 +10,9 @@
 
 namespace mirage::core {
 
+/// Smallest n' >= n of the form 2^a 3^b 5^c, a length FFTW transforms fast (n >= 1).
+std::size_t NextFastFftSize(std::size_t n);
+
 /// Forward X[k] = sum_n x[n] e^{-j 2 pi k n / N}; inverse x[n] = (1/N) sum_k X[k] e^{+j 2 pi k n / N}.
 class Fft {
  public:

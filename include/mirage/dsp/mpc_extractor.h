@@ -64,16 +64,27 @@ class MpcExtractor {
     double offset = 0.0;  // delay in samples from the window start
     Complex amplitude;
   };
+  // The residual matched-filter output with its energies |y|^2 and per-block maxima, so that
+  // the strongest peak is found without scanning the whole window each time.
+  struct Residual {
+    std::vector<Complex> y;
+    std::vector<double> energy;
+    std::vector<int> block_argmax;
+  };
   // Peak search around sample index n in y, sub-sample parabola; returns the component.
   [[nodiscard]] Component Refine(const std::vector<Complex>& y, int n) const;
-  void AddScaled(std::vector<Complex>& y, const Component& c, double sign) const;
+  // y += sign * alpha * R((n - offset) T_s) over the component's support; updates the energies.
+  void AddScaled(Residual& residual, const Component& c, double sign) const;
+  void UpdateBlocks(Residual& residual, int lo, int hi) const;
+  [[nodiscard]] int ArgMax(const Residual& residual) const;
 
   MpcExtractorOptions options_;
   channel::RaisedCosinePulse pulse_;
   int sample_count_ = 0;
   double sample_period_s_ = 0.0;
   double threshold_ratio_ = 0.0;
-  int support_samples_ = 0;
+  int support_samples_ = 0;                // |R| < 1e-3 beyond this many samples
+  std::vector<double> autocorrelation_;    // R(i T_s / kTableOversampling), i >= 0
   core::Fft fft_;
   std::vector<double> template_spectrum_;  // P(f_k) / sqrt(T_s), real and even
 };

@@ -30,8 +30,8 @@ std::optional<ReflectionPath> TraceVirtualAnchor(const VirtualAnchorSet& vas, in
 /// True if the VA is visible from agent_m (same test as TraceVirtualAnchor, without the points).
 bool IsVisible(const VirtualAnchorSet& vas, int va_id, const FloorPlan& plan, const Vec2& agent_m);
 
-/// Ids of the VAs of one anchor visible from agent_m, in increasing id order.
+/// Ids of the VAs of one anchor up to max_order visible from agent_m, in increasing id order.
 std::vector<int> VisibleVirtualAnchors(const VirtualAnchorSet& vas, int anchor_index, const FloorPlan& plan,
-                                       const Vec2& agent_m);
+                                       const Vec2& agent_m, int max_order = kMaxVirtualAnchorOrder);
 
 }  // namespace mirage::geometry

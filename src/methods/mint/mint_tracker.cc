@@ -64,8 +64,7 @@ std::vector<MintTracker::Pairing> MintTracker::Associate(const Reference& refere
     std::vector<int> visible;
     std::vector<double> expected_m;
     std::vector<double> gate_variance_m2;
-    for (const int id : geometry::VisibleVirtualAnchors(*vas_, anchor.anchor_index, *plan_, at_m)) {
-      if ((*vas_)[id].order > max_order) continue;
+    for (const int id : geometry::VisibleVirtualAnchors(*vas_, anchor.anchor_index, *plan_, at_m, max_order)) {
       const auto prediction = estimation::PredictVaRange(at_m, (*vas_)[id].position_m);
       if (!prediction) continue;  // agent on top of the VA: no direction
       visible.push_back(id);

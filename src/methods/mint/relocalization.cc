@@ -28,8 +28,7 @@ MatchScore ScorePosition(const geometry::VirtualAnchorSet& vas, const geometry::
                          std::span<const core::AnchorRanges> measurements, const RelocalizationOptions& options) {
   MatchScore score;
   for (const auto& anchor : measurements) {
-    for (const int id : vas.ForAnchor(anchor.anchor_index)) {
-      if (vas[id].order > options.max_order || !geometry::IsVisible(vas, id, plan, p_m)) continue;
+    for (const int id : geometry::VisibleVirtualAnchors(vas, anchor.anchor_index, plan, p_m, options.max_order)) {
       ++score.visible;
       const double expected_m = (vas[id].position_m - p_m).norm();
       for (const auto& r : anchor.ranges) {
