@@ -6,7 +6,7 @@ BUILD_DIR ?= build
 JOBS ?= $(shell nproc)
 CMAKE_FLAGS ?=
 
-.PHONY: all deps configure build demo test bench clean sanitize-test
+.PHONY: all deps configure build demo test bench clean sanitize-test fuzz
 
 all: build
 
@@ -36,5 +36,16 @@ sanitize-test: deps
 	@cmake --build $(BUILD_DIR)-asan -j $(JOBS)
 	@cd $(BUILD_DIR)-asan && ctest --output-on-failure -j $(JOBS) -LE slow
 
+# The scenario parser under libFuzzer with ASan+UBSan, seeded with the examples and the bad
+# inputs of the CLI tests, for FUZZ_SECONDS (default 60).
+FUZZ_SECONDS ?= 60
+fuzz: deps
+	@CXX=clang++ cmake -S . -B $(BUILD_DIR)-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMIRAGE_SANITIZE=ON \
+	    -DMIRAGE_BUILD_FUZZERS=ON -DMIRAGE_BUILD_TESTS=OFF -DMIRAGE_BUILD_BENCH=OFF > /dev/null
+	@cmake --build $(BUILD_DIR)-fuzz -j $(JOBS) --target scenario_fuzzer
+	@mkdir -p $(BUILD_DIR)-fuzz/corpus && cp examples/*.yaml tests/cli/bad/*.yaml $(BUILD_DIR)-fuzz/corpus/ 2>/dev/null || true
+	@cd examples && ../$(BUILD_DIR)-fuzz/bin/scenario_fuzzer -max_total_time=$(FUZZ_SECONDS) -max_len=16384 \
+	    -timeout=10 -print_final_stats=1 ../$(BUILD_DIR)-fuzz/corpus 2>&1 | tail -n 15
+
 clean:
-	rm -rf $(BUILD_DIR) $(BUILD_DIR)-asan
+	rm -rf $(BUILD_DIR) $(BUILD_DIR)-asan $(BUILD_DIR)-fuzz

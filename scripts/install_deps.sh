@@ -9,6 +9,7 @@ packages=(
   libeigen3-dev libfftw3-dev libyaml-cpp-dev libcli11-dev libfmt-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   python3 python3-matplotlib python3-numpy
+  clang libclang-rt-14-dev
 )
 
 missing=()

@@ -51,6 +51,12 @@ def main(data_path, out_path):
                                  fill=False, color=color, lw=0.8))
         ax.plot([], [], color=color, label=f"{traj['name']} (estimates, all runs)")
     ax.plot([], [], "k--", label="truth (central run)")
+    # The room, not a diverged run, sets the view.
+    walls = np.array([w[:4] for w in data["walls"]])
+    xs, ys = np.concatenate([walls[:, 0], walls[:, 2]]), np.concatenate([walls[:, 1], walls[:, 3]])
+    margin = 0.05 * max(np.ptp(xs), np.ptp(ys))
+    ax.set_xlim(xs.min() - margin, xs.max() + margin)
+    ax.set_ylim(ys.min() - margin, ys.max() + margin)
     ax.set_aspect("equal")
     ax.set_xlabel("x (m)")
     ax.set_ylabel("y (m)")

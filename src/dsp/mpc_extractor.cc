@@ -132,6 +132,18 @@ int MpcExtractor::ArgMax(const Residual& residual) const {
   return best;
 }
 
+void MpcExtractor::Readjust(Residual& residual, Component& c) const {
+  // Add the component back, search its peak again within +-2 samples, subtract the new estimate.
+  AddScaled(residual, c, +1.0);
+  const int center = std::clamp(static_cast<int>(std::lround(c.offset)), 0, sample_count_ - 1);
+  int best = center;
+  for (int n = std::max(0, center - 2); n <= std::min(sample_count_ - 1, center + 2); ++n) {
+    if (residual.energy[static_cast<std::size_t>(n)] > residual.energy[static_cast<std::size_t>(best)]) best = n;
+  }
+  c = Refine(residual.y, best);
+  AddScaled(residual, c, -1.0);
+}
+
 std::vector<Mpc> MpcExtractor::Extract(const core::Cir& cir) const {
   Residual residual;
   residual.y = MatchedFilter(cir);
@@ -153,19 +165,15 @@ std::vector<Mpc> MpcExtractor::Extract(const core::Cir& cir) const {
     AddScaled(residual, c, -1.0);
     found.push_back(c);
     if (!options_.readjust) continue;
-    // Readjust the earlier components that overlap the new one: add each back, search its peak
-    // again within +-2 samples, and subtract the new estimate.
+    // Readjust the earlier components that overlap the new one, then the new one again with
+    // the corrected neighbours removed.
+    bool overlapped = false;
     for (std::size_t j = 0; j + 1 < found.size(); ++j) {
       if (std::abs(found[j].offset - c.offset) > support_samples_) continue;
-      AddScaled(residual, found[j], +1.0);
-      const int center = std::clamp(static_cast<int>(std::lround(found[j].offset)), 0, sample_count_ - 1);
-      int local_best = center;
-      for (int n = std::max(0, center - 2); n <= std::min(sample_count_ - 1, center + 2); ++n) {
-        if (residual.energy[static_cast<std::size_t>(n)] > residual.energy[static_cast<std::size_t>(local_best)]) local_best = n;
-      }
-      found[j] = Refine(residual.y, local_best);
-      AddScaled(residual, found[j], -1.0);
+      Readjust(residual, found[j]);
+      overlapped = true;
     }
+    if (overlapped) Readjust(residual, found.back());
   }
   std::vector<Mpc> mpcs;
   mpcs.reserve(found.size());

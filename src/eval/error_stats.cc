@@ -45,14 +45,16 @@ std::vector<std::string> Validate(const DivergenceRule& rule) {
 bool IsDiverged(std::span<const double> errors_m, const DivergenceRule& rule) {
   if (errors_m.empty()) return false;
   const auto n = errors_m.size();
-  const auto tail = std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil(rule.last_fraction * static_cast<double>(n))));
+  // The relative slack keeps products like 0.07 * 100 = 7.000000000000001 from rounding up.
+  const double exact = rule.last_fraction * static_cast<double>(n);
+  const auto tail = std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil(exact - 1e-9 * std::max(1.0, exact))));
   const auto last = errors_m.subspan(n - tail);
   const double mean = std::accumulate(last.begin(), last.end(), 0.0) / static_cast<double>(tail);
   return mean > rule.threshold_m;
 }
 
 std::string Describe(const DivergenceRule& rule) {
-  return fmt::format("a run diverged if its mean position error over the last {:.0f} % of its steps exceeds {:g} m",
+  return fmt::format("a run diverged if its mean position error over the last {:g} % of its steps exceeds {:g} m",
                      100.0 * rule.last_fraction, rule.threshold_m);
 }
 

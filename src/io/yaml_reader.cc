@@ -24,7 +24,9 @@ std::string ScalarText(const YAML::Node& node) {
 }
 
 YAML::Node LoadFile(const std::string& path) {
-  if (!std::filesystem::exists(path)) throw InputError(path + ": file not found");
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) throw InputError(path + ": file not found");
+  if (!std::filesystem::is_regular_file(path, ec)) throw InputError(path + ": not a regular file");
   try {
     return YAML::LoadFile(path);
   } catch (const YAML::ParserException& e) {
@@ -62,7 +64,16 @@ const std::string& YamlOrigins::FileOf(const std::string& path) const {
   }
 }
 
-YAML::Node LoadYamlWithExtends(const std::string& path, YamlOrigins& origins) {
+namespace {
+
+// chain: the files being loaded, to detect `extends` cycles.
+YAML::Node LoadWithExtends(const std::string& path, YamlOrigins& origins, std::vector<std::string>& chain) {
+  std::error_code ec;
+  const auto canonical = std::filesystem::weakly_canonical(path, ec).string();
+  for (const auto& seen : chain) {
+    if (seen == canonical) throw InputError(path + ": extends: the files extend each other in a cycle");
+  }
+  chain.push_back(canonical);
   YAML::Node doc = LoadFile(path);
   if (!doc.IsMap()) throw InputError(path + ":1: the document must be a map of keys");
   if (!doc["extends"]) return doc;
@@ -72,11 +83,18 @@ YAML::Node LoadYamlWithExtends(const std::string& path, YamlOrigins& origins) {
   }
   const auto base_path = (std::filesystem::path(path).parent_path() / extends.as<std::string>()).string();
   YamlOrigins base_origins(base_path);
-  YAML::Node base = LoadYamlWithExtends(base_path, base_origins);
+  YAML::Node base = LoadWithExtends(base_path, base_origins, chain);
   // The merged document's default origin is the base file; every key this file sets is recorded.
   origins = base_origins;
   Merge(base, doc, "", path, origins);
   return base;
+}
+
+}  // namespace
+
+YAML::Node LoadYamlWithExtends(const std::string& path, YamlOrigins& origins) {
+  std::vector<std::string> chain;
+  return LoadWithExtends(path, origins, chain);
 }
 
 YamlMap::YamlMap(YAML::Node node, std::string path, std::shared_ptr<const YamlOrigins> origins)

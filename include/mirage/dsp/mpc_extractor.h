@@ -7,8 +7,8 @@
 // the ML delay and y(tau_hat) is exactly the projection of Eq. (3.1); subtracting
 // alpha_hat s(t - tau_hat) from r (Eq. 3.2) is subtracting alpha_hat R_ss(tau - tau_hat) from y.
 // Delays are refined below the sample grid by a parabola through |y|^2 at the peak; after each new
-// component, the earlier components that overlap it are re-estimated one at a time with the
-// others removed ("readjust"), which undoes the bias a strong neighbour leaves on them.
+// component, the earlier components that overlap it and then the new one are re-estimated one at
+// a time with the others removed ("readjust"), which undoes the bias a strong neighbour leaves.
 #pragma once
 
 #include <string>
@@ -26,8 +26,10 @@ struct MpcExtractorOptions {
   /// Maximum number of components K (>= 1). 20 as in Lafer 2014 Tab. 3.1.
   int max_components = 20;
   /// Stop when a component's energy falls this far below the strongest one (dB, < 0). The thesis
-  /// only says the threshold is relative [GAP]; -30 dB keeps every path above the diffuse floor
-  /// of a 20-30 dB LOS and stops on pure noise.
+  /// only says the threshold is relative [GAP]. -30 dB is below the noise floor of a 20-35 dB LOS,
+  /// so with the defaults the extraction usually runs to max_components and its last components
+  /// are diffuse-multipath and noise peaks: clutter the association has to reject, as with the
+  /// thesis's measured data (Sec. 3.3: "Z typically also contains spurious ranges").
   double relative_threshold_db = -30.0;
   /// Re-estimate overlapping earlier components after each new one.
   bool readjust = true;
@@ -76,6 +78,8 @@ class MpcExtractor {
   // y += sign * alpha * R((n - offset) T_s) over the component's support; updates the energies.
   void AddScaled(Residual& residual, const Component& c, double sign) const;
   void UpdateBlocks(Residual& residual, int lo, int hi) const;
+  // Re-estimates one component with everything else removed (the "readjust" step).
+  void Readjust(Residual& residual, Component& c) const;
   [[nodiscard]] int ArgMax(const Residual& residual) const;
 
   MpcExtractorOptions options_;

@@ -1,0 +1,117 @@
+// SPDX-License-Identifier: MIT
+#include "mirage/geometry/trajectory.h"
+
+#include <vector>
+
+#include <gtest/gtest.h>
+
+namespace mirage::geometry {
+namespace {
+
+constexpr double kTol = 1e-12;
+
+// A U-shaped walk (0,0) -> (1,0) -> (1,1) -> (0,1), 3 m long.
+const std::vector<Vec2> kUShape{Vec2(0, 0), Vec2(1, 0), Vec2(1, 1), Vec2(0, 1)};
+
+TEST(PolylineLength, SumsTheSegmentLengths) {
+  const std::vector<Vec2> points{Vec2(0, 0), Vec2(3, 4), Vec2(3, 0)};  // 5 + 4
+  EXPECT_DOUBLE_EQ(PolylineLength(points), 9.0);
+  EXPECT_DOUBLE_EQ(PolylineLength(kUShape), 3.0);
+}
+
+TEST(PolylineLength, IsZeroForASinglePointOrNone) {
+  const std::vector<Vec2> one{Vec2(2, 3)};
+  EXPECT_EQ(PolylineLength(one), 0.0);
+  EXPECT_EQ(PolylineLength(std::vector<Vec2>{}), 0.0);
+}
+
+TEST(SampleTrajectory, TakesOneSamplePerStepIncludingBothEndsWhenTheLengthIsAMultiple) {
+  // 3 m at 1 m/s, dt 0.3 s: step 0.3 m, 3 / 0.3 = 10 steps -> 11 samples, the last at (0,1).
+  const auto samples = SampleTrajectory(kUShape, 1.0, 0.3);
+
+  ASSERT_EQ(samples.size(), 11u);
+  EXPECT_TRUE(samples.front().position_m.isApprox(Vec2(0, 0), kTol));
+  EXPECT_NEAR((samples.back().position_m - Vec2(0, 1)).norm(), 0.0, 1e-9);
+  for (std::size_t n = 0; n < samples.size(); ++n) EXPECT_NEAR(samples[n].t_s, 0.3 * static_cast<double>(n), kTol);
+}
+
+TEST(SampleTrajectory, StopsAtTheLastSampleBeforeTheFinalWaypoint) {
+  // Step 0.4 m: 3 / 0.4 = 7.5 -> samples at 0, 0.4, ..., 2.8 m (8 samples). Arc length 2.8 is
+  // 0.8 m along the last segment (1,1) -> (0,1): (0.2, 1).
+  const auto samples = SampleTrajectory(kUShape, 0.5, 0.8);
+
+  ASSERT_EQ(samples.size(), 8u);
+  EXPECT_NEAR((samples.back().position_m - Vec2(0.2, 1)).norm(), 0.0, 1e-12);
+  EXPECT_NEAR(samples.back().t_s, 5.6, kTol);
+}
+
+TEST(SampleTrajectory, PutsASampleJustAfterACornerOnTheNextSegmentAtTheRightArcLength) {
+  // The walker turns instantly: arc length 1.2 m is 0.2 m up the second segment, (1, 0.2);
+  // 2.1 m is 0.1 m along the third, (0.9, 1).
+  const auto samples = SampleTrajectory(kUShape, 1.0, 0.3);
+
+  ASSERT_EQ(samples.size(), 11u);
+  EXPECT_NEAR((samples[3].position_m - Vec2(0.9, 0)).norm(), 0.0, 1e-12);  // 0.9 m, before the corner
+  EXPECT_NEAR((samples[4].position_m - Vec2(1, 0.2)).norm(), 0.0, 1e-12);
+  EXPECT_NEAR((samples[7].position_m - Vec2(0.9, 1)).norm(), 0.0, 1e-12);
+}
+
+TEST(SampleTrajectory, GivesEachSampleTheVelocityOfItsSegment) {
+  const auto samples = SampleTrajectory(kUShape, 1.0, 0.3);
+
+  EXPECT_TRUE(samples[1].velocity_mps.isApprox(Vec2(1, 0), kTol));
+  EXPECT_TRUE(samples[4].velocity_mps.isApprox(Vec2(0, 1), kTol));
+  EXPECT_TRUE(samples[7].velocity_mps.isApprox(Vec2(-1, 0), kTol));
+}
+
+TEST(SampleTrajectory, WalksADiagonalAtTheGivenSpeed) {
+  // (0,0) -> (3,4) at 0.5 m/s, dt 2 s: 1 m per step along (0.6, 0.8); 5 steps -> 6 samples.
+  const std::vector<Vec2> line{Vec2(0, 0), Vec2(3, 4)};
+
+  const auto samples = SampleTrajectory(line, 0.5, 2.0);
+
+  ASSERT_EQ(samples.size(), 6u);
+  EXPECT_TRUE(samples[1].position_m.isApprox(Vec2(0.6, 0.8), kTol));
+  EXPECT_TRUE(samples[3].position_m.isApprox(Vec2(1.8, 2.4), kTol));
+  EXPECT_TRUE(samples[2].velocity_mps.isApprox(Vec2(0.3, 0.4), kTol));
+  EXPECT_NEAR(samples[5].t_s, 10.0, kTol);
+}
+
+TEST(SampleTrajectory, ShiftsPositionsButNotVelocitiesByTheOffset) {
+  const Vec2 offset(0.01, -0.02);
+
+  const auto plain = SampleTrajectory(kUShape, 1.0, 0.3);
+  const auto shifted = SampleTrajectory(kUShape, 1.0, 0.3, offset);
+
+  ASSERT_EQ(shifted.size(), plain.size());
+  for (std::size_t n = 0; n < plain.size(); ++n) {
+    EXPECT_TRUE((shifted[n].position_m - plain[n].position_m).isApprox(offset, 1e-12));
+    EXPECT_EQ(shifted[n].velocity_mps, plain[n].velocity_mps);
+    EXPECT_EQ(shifted[n].t_s, plain[n].t_s);
+  }
+  EXPECT_TRUE(shifted[4].position_m.isApprox(Vec2(1.01, 0.18), 1e-12));
+}
+
+TEST(SampleTrajectory, SkipsZeroLengthSegments) {
+  // A repeated waypoint at (1,0); step 0.5 m: arc length 1.5 m is (1, 0.5) moving north.
+  const std::vector<Vec2> points{Vec2(0, 0), Vec2(1, 0), Vec2(1, 0), Vec2(1, 1)};
+
+  const auto samples = SampleTrajectory(points, 0.5, 1.0);
+
+  ASSERT_EQ(samples.size(), 5u);
+  EXPECT_TRUE(samples[3].position_m.isApprox(Vec2(1, 0.5), kTol));
+  EXPECT_TRUE(samples[3].velocity_mps.isApprox(Vec2(0, 0.5), kTol));
+  EXPECT_TRUE(samples[4].position_m.isApprox(Vec2(1, 1), kTol));
+}
+
+TEST(SampleTrajectory, MatchesTheThesisStepOf5cmAt0Point1s) {
+  // 0.5 m/s at 0.1 s -> 5 cm per step (Lafer 2014 Sec. 3.7); a 3 m walk has 61 samples.
+  const auto samples = SampleTrajectory(kUShape, 0.5, 0.1);
+
+  ASSERT_EQ(samples.size(), 61u);
+  EXPECT_NEAR((samples[21].position_m - Vec2(1, 0.05)).norm(), 0.0, 1e-12);
+  EXPECT_NEAR((samples[60].position_m - Vec2(0, 1)).norm(), 0.0, 1e-9);
+}
+
+}  // namespace
+}  // namespace mirage::geometry
