@@ -3,6 +3,8 @@
 
 #include <cmath>
 
+#include <fmt/format.h>
+
 #include "mirage/core/constants.h"
 #include "mirage/core/units.h"
 
@@ -34,8 +36,8 @@ std::vector<std::string> Validate(const ChannelOptions& options) {
   } else if (problems.empty()) {
     const double nyquist_s = 1.0 / (2.0 * RaisedCosinePulse(options.pulse).band_edge_hz());
     if (options.sample_period_s > nyquist_s) {
-      problems.push_back("sample_period_s must be at most " + std::to_string(nyquist_s) +
-                         " s (Nyquist for the pulse bandwidth)");
+      problems.push_back(fmt::format("sample_period_s must be at most {:.6g} s (Nyquist for the pulse bandwidth)",
+                                     nyquist_s));
     }
   }
   if (!(options.window_start_s >= 0.0) || !std::isfinite(options.window_start_s)) {

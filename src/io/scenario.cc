@@ -211,11 +211,14 @@ Scenario LoadScenario(const std::string& path, const ScenarioOverrides& override
   }
 
   std::map<std::string, double> materials;
-  for (const auto& [name, value] : root.NumberTable("materials")) {
-    if (!(value > 0.0 && value <= 1.0)) {
-      root.Fail("materials", fmt::format("{}: reflection coefficient {} must be in (0, 1]", name, FormatValue(value)));
+  {
+    YamlMap table = root.OptionalMap("materials");
+    for (const auto& [name, value] : table.NumberTable()) {
+      if (!(value > 0.0 && value <= 1.0)) {
+        table.Fail(name, fmt::format("reflection coefficient {} must be in (0, 1]", FormatValue(value)));
+      }
+      materials[name] = value;
     }
-    materials[name] = value;
   }
   config.plan = ReadFloorPlan(root.Map("floor_plan"), materials);
   config.known_plan = config.plan;

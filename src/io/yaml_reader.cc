@@ -42,10 +42,15 @@ void Merge(YAML::Node base, const YAML::Node& over, const std::string& path, con
     const auto key = kv.first.as<std::string>();
     const std::string key_path = JoinPath(path, key);
     if (key == "extends" && path.empty()) continue;
-    if (kv.second.IsMap() && base[key] && base[key].IsMap()) {
+    const YAML::Node& const_base = base;  // const lookup: non-const operator[] would insert
+    if (kv.second.IsMap() && const_base[key] && const_base[key].IsMap()) {
       Merge(base[key], kv.second, key_path, file, origins);
-    } else {
+    } else if (const_base[key]) {
       base[key] = kv.second;
+      origins.Set(key_path, file);
+    } else {
+      // A new key keeps its own node, and with it the line it was written on.
+      base.force_insert(kv.first, kv.second);
       origins.Set(key_path, file);
     }
   }
@@ -159,8 +164,9 @@ double YamlMap::Number(const std::string& key) {
 double YamlMap::NumberInRange(const std::string& key, double fallback, double lo, double hi, const std::string& unit) {
   const double v = Number(key, fallback);
   if (v < lo || v > hi) {
-    Fail(key, fmt::format("{} {} is out of range, expected [{}, {}] {}", FormatValue(v), unit, FormatValue(lo),
-                          FormatValue(hi), unit));
+    const std::string u = unit.empty() ? "" : " " + unit;
+    Fail(key, fmt::format("{}{} is out of range, expected [{}, {}]{}", FormatValue(v), u, FormatValue(lo),
+                          FormatValue(hi), u));
   }
   return v;
 }
@@ -252,14 +258,12 @@ std::vector<YamlMap> YamlMap::MapList(const std::string& key, bool allow_empty) 
   return maps;
 }
 
-std::vector<std::pair<std::string, double>> YamlMap::NumberTable(const std::string& key) {
-  const YAML::Node n = Get(key);
+std::vector<std::pair<std::string, double>> YamlMap::NumberTable() {
   std::vector<std::pair<std::string, double>> table;
-  if (!n) return table;
-  if (!n.IsMap()) Fail(key, "expected a map of name: number, got " + ScalarText(n));
-  for (const auto& kv : n) {
+  for (const auto& kv : node_) {
     const auto name = kv.first.as<std::string>();
-    table.emplace_back(name, ToNumber(kv.second, KeyPath(key) + "." + name));
+    used_.insert(name);
+    table.emplace_back(name, ToNumber(kv.second, KeyPath(name)));
   }
   return table;
 }

@@ -73,8 +73,8 @@ class YamlMap {
   YamlMap OptionalMap(const std::string& key);
   /// A list of maps (required, possibly empty when allow_empty).
   std::vector<YamlMap> MapList(const std::string& key, bool allow_empty);
-  /// The keys and scalar values of a map of name -> number (e.g. materials).
-  std::vector<std::pair<std::string, double>> NumberTable(const std::string& key);
+  /// This map read as name -> number (e.g. materials); marks every key as known.
+  std::vector<std::pair<std::string, double>> NumberTable();
 
   /// Throws for every key that was never read.
   void RejectUnknownKeys() const;

@@ -103,6 +103,7 @@ std::vector<MintTracker::Pairing> MintTracker::Associate(const Reference& refere
 
 estimation::UpdateResult MintTracker::Update(estimation::State& state, const std::vector<Pairing>& pairings,
                                              const std::vector<double>& variances_m2,
+                                             const std::vector<std::optional<double>>& sinrs,
                                              std::vector<MintAssociation>* associations) const {
   const Vec2 prior_m = state.Mean({BlockKind::kPosition, 0});
   const int position_offset = state.layout().At({BlockKind::kPosition, 0}).offset;
@@ -125,6 +126,7 @@ estimation::UpdateResult MintTracker::Update(estimation::State& state, const std
       a.expected_range_m = prediction->range_m;
       a.measured_range_m = p.measurement->range_m;
       a.variance_m2 = variances_m2[k];
+      if (k < sinrs.size()) a.sinr = sinrs[k];
       a.overlapped = p.overlapped;
       associations->push_back(a);
     }
@@ -170,7 +172,7 @@ MintStepResult MintTracker::Step(double t_s, std::span<const core::AnchorRanges>
       std::vector<double> variances;
       for (const auto& p : los) variances.push_back(CurrentVariance(p.va_id));
       estimation::State trial = state_;
-      if (Update(trial, los, variances, nullptr).applied) {
+      if (Update(trial, los, variances, {}, nullptr).applied) {
         reference = {trial.Mean({BlockKind::kPosition, 0}), trial.Covariance({BlockKind::kPosition, 0})};
       }
     }
@@ -193,8 +195,7 @@ MintStepResult MintTracker::Step(double t_s, std::span<const core::AnchorRanges>
       sinrs.emplace_back();
     }
   }
-  result.update = Update(state_, pairings, variances, &result.associations);
-  for (std::size_t k = 0; k < result.associations.size() && k < sinrs.size(); ++k) result.associations[k].sinr = sinrs[k];
+  result.update = Update(state_, pairings, variances, sinrs, &result.associations);
 
   if (options_.constrain_to_room && previous_position_m_) {
     const Vec2 estimate_m = state_.Mean({BlockKind::kPosition, 0});

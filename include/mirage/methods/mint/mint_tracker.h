@@ -127,9 +127,11 @@ class MintTracker {
   [[nodiscard]] std::vector<Pairing> Associate(const Reference& reference,
                                                std::span<const core::AnchorRanges> measurements, int max_order,
                                                double gate, int* visible_count) const;
-  // EKF update of `state` with the pairings, linearised at its mean (Eq. 3.18-3.24).
+  // EKF update of `state` with the pairings, linearised at its mean (Eq. 3.18-3.24). The
+  // optional sinrs (parallel to pairings) are copied into the reported associations.
   estimation::UpdateResult Update(estimation::State& state, const std::vector<Pairing>& pairings,
                                   const std::vector<double>& variances_m2,
+                                  const std::vector<std::optional<double>>& sinrs,
                                   std::vector<MintAssociation>* associations) const;
   // Range variance of the VA as it stands, without recording anything (m^2).
   [[nodiscard]] double CurrentVariance(int va_id) const;
