@@ -77,7 +77,7 @@ int main(int argc, char** argv) {
   run->add_option("--seed", args.seed, "master seed (overrides the scenario)");
   run->add_option("--threads", args.threads, "worker threads, 0 = all cores (results do not depend on it)");
   run->add_option("--json", args.json, "write the JSON report to this file");
-  run->add_option("--csv", args.csv, "write tracks.csv, runs.csv, virtual_anchors.csv into this directory");
+  run->add_option("--csv", args.csv, "write tracks.csv, runs.csv, paths.csv, virtual_anchors.csv into this directory");
   run->add_option("--plot", args.plot, "write a picture (PNG, PDF or SVG) of the run");
   run->add_flag("--quiet", args.quiet, "print nothing but errors");
 

@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "mirage/core/constants.h"
 #include "mirage/io/input_error.h"
 
 namespace mirage::io {
@@ -164,6 +165,23 @@ void WriteCsv(const std::string& dir, const Scenario& scenario, const pipeline::
       out << fmt::format("{},{},{:.4f},{:.4f},{},{:.5f},{:.5f},{}\n",
                          config.trajectories[static_cast<std::size_t>(run.trajectory)].name, run.run, run.offset_m.x(),
                          run.offset_m.y(), run.steps.size(), e.rmse, e.p90, run.diverged ? 1 : 0);
+    }
+  }
+  {
+    // The per-path ground truth of the first run of each trajectory (all runs would be tens of
+    // megabytes): delay, amplitude, true and estimated SINR of every visible specular path.
+    auto out = OpenForWriting(dir + "/paths.csv");
+    out << "trajectory,run,step,anchor_id,va_id,order,delay_s,range_m,amplitude_re,amplitude_im,true_sinr_db,"
+           "estimated_sinr_db\n";
+    for (const auto& run : result.runs) {
+      if (run.run != 0) continue;
+      const std::string& name = config.trajectories[static_cast<std::size_t>(run.trajectory)].name;
+      for (const auto& p : run.paths) {
+        out << fmt::format("{},{},{},{},{},{},{:.6e},{:.5f},{:.6e},{:.6e},{:.2f},{}\n", name, run.run, p.step,
+                           config.anchor_ids[static_cast<std::size_t>(p.anchor)], p.va_id, p.order, p.delay_s,
+                           p.delay_s * core::kSpeedOfLight_mps, p.amplitude.real(), p.amplitude.imag(),
+                           p.true_sinr_db, p.estimated_sinr_db ? fmt::format("{:.2f}", *p.estimated_sinr_db) : "");
+      }
     }
   }
   {

@@ -65,13 +65,14 @@ RunRecord RunOne(const Shared& shared, int trajectory, int run) {
   const int anchors = static_cast<int>(config.anchors_m.size());
   std::vector<core::AnchorRanges> measurements(static_cast<std::size_t>(anchors));
   std::vector<eval::RangeInformation> information;
-  std::map<int, std::size_t> sinr_index_by_channel_va;  // channel VA id -> index in record.sinr (this step)
+  std::map<int, std::size_t> path_index_by_channel_va;  // channel VA id -> index in record.paths (this step)
   record.steps.reserve(samples.size());
 
   for (const auto& sample : samples) {
     const auto t_sim = Clock::now();
     information.clear();
-    sinr_index_by_channel_va.clear();
+    path_index_by_channel_va.clear();
+    const int step_index = static_cast<int>(record.steps.size());
     std::vector<channel::SynthesizedCir> cirs;
     cirs.reserve(static_cast<std::size_t>(anchors));
     for (int a = 0; a < anchors; ++a) {
@@ -82,8 +83,9 @@ RunRecord RunOne(const Shared& shared, int trajectory, int run) {
       cirs.push_back(shared.synthesizer->Synthesize(paths, los_distance_m, diffuse_rng, noise_rng));
       for (const auto& truth : cirs.back().paths) {
         information.push_back({shared.channel_vas[truth.va_id].position_m, truth.sinr});
-        sinr_index_by_channel_va[truth.va_id] = record.sinr.size();
-        record.sinr.push_back({truth.order, core::PowerRatioToDb(truth.sinr), std::nullopt});
+        path_index_by_channel_va[truth.va_id] = record.paths.size();
+        record.paths.push_back({step_index, a, truth.va_id, truth.order, truth.delay_s, truth.amplitude,
+                                core::PowerRatioToDb(truth.sinr), std::nullopt});
       }
     }
     const auto t_est = Clock::now();
@@ -103,10 +105,10 @@ RunRecord RunOne(const Shared& shared, int trajectory, int run) {
     for (const auto& association : step.associations) {
       if (!association.sinr) continue;
       const int channel_id = shared.known_to_channel[static_cast<std::size_t>(association.va_id)];
-      const auto it = sinr_index_by_channel_va.find(channel_id);
-      if (it == sinr_index_by_channel_va.end()) continue;  // associated a VA the channel does not have now
+      const auto it = path_index_by_channel_va.find(channel_id);
+      if (it == path_index_by_channel_va.end()) continue;  // associated a VA the channel does not have now
       // SINR 0 ("zero or complex") is reported at -40 dB so that it stays a finite statistic.
-      record.sinr[it->second].estimated_db = core::PowerRatioToDb(std::max(*association.sinr, 1e-4));
+      record.paths[it->second].estimated_sinr_db = core::PowerRatioToDb(std::max(*association.sinr, 1e-4));
     }
 
     StepRecord s;
@@ -177,6 +179,7 @@ MintExperimentResult RunMintExperiment(const MintExperimentConfig& config, const
     for (auto& t : pool) t.join();
   }
   result.known_vas = std::move(shared.known_vas);
+  result.channel_vas = std::move(shared.channel_vas);
   result.wall_s = Seconds(Clock::now() - t_start);
   return result;
 }

@@ -56,12 +56,12 @@ MintSummary Summarize(const MintExperimentConfig& config, const MintExperimentRe
     by_trajectory[static_cast<std::size_t>(run.trajectory)].push_back(&run);
     summary.simulate_s += run.simulate_s;
     summary.estimate_s += run.estimate_s;
-    for (const auto& s : run.sinr) {
-      const std::string key = OrderName(s.order);
-      true_db[key].push_back(s.true_db);
-      if (s.estimated_db) {
-        estimated_db[key].push_back(*s.estimated_db);
-        error_db[key].push_back(*s.estimated_db - s.true_db);
+    for (const auto& p : run.paths) {
+      const std::string key = OrderName(p.order);
+      true_db[key].push_back(p.true_sinr_db);
+      if (p.estimated_sinr_db) {
+        estimated_db[key].push_back(*p.estimated_sinr_db);
+        error_db[key].push_back(*p.estimated_sinr_db - p.true_sinr_db);
       }
     }
   }

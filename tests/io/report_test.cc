@@ -8,6 +8,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -222,6 +223,42 @@ TEST(CsvFiles, HaveTheDocumentedHeadersAndOneRowPerStepRunAndVa) {
   EXPECT_EQ(tracks[1].rfind(t.scenario.mint.trajectories[0].name + ",0,0,", 0), 0u) << tracks[1];
   EXPECT_EQ(vas[1].rfind("0,A1,0,", 0), 0u) << vas[1];
   EXPECT_EQ(runs[2].rfind(t.scenario.mint.trajectories[1].name + ",0,", 0), 0u) << runs[2];
+}
+
+TEST(CsvFiles, WriteOnePathRowPerVisiblePathOfTheFirstRuns) {
+  // Arrange
+  const Tiny& t = TinyExperiment();
+  const TempDir dir("paths");
+  const fs::path out = dir.path() / "csv";
+
+  // Act
+  WriteCsv(out.string(), t.scenario, t.result);
+
+  // Assert: the header, and as many rows as run 0 of all trajectories recorded paths; a LOS row
+  // has order 0, range = c * delay, and |amplitude| = 1 m / range (free space).
+  const auto paths = ReadLines(out / "paths.csv");
+  ASSERT_GT(paths.size(), 1u);
+  EXPECT_EQ(paths[0],
+            "trajectory,run,step,anchor_id,va_id,order,delay_s,range_m,amplitude_re,amplitude_im,true_sinr_db,"
+            "estimated_sinr_db");
+  std::size_t expected_rows = 0;
+  for (const auto& run : t.result.runs) {
+    if (run.run == 0) expected_rows += run.paths.size();
+  }
+  EXPECT_EQ(paths.size() - 1, expected_rows);
+  bool found_los = false;
+  for (std::size_t i = 1; i < paths.size() && !found_los; ++i) {
+    std::vector<std::string> f;
+    std::stringstream row(paths[i]);
+    for (std::string cell; std::getline(row, cell, ',');) f.push_back(cell);
+    if (f.size() < 11 || f[5] != "0") continue;
+    found_los = true;
+    const double delay_s = std::stod(f[6]), range_m = std::stod(f[7]);
+    const double magnitude = std::hypot(std::stod(f[8]), std::stod(f[9]));
+    EXPECT_NEAR(range_m, delay_s * 299792458.0, 1e-4);
+    EXPECT_NEAR(magnitude * range_m, 1.0, 1e-4);
+  }
+  EXPECT_TRUE(found_los);
 }
 
 TEST(ResultTable, ListsEveryTrajectoryAndTheOverallRow) {

@@ -73,10 +73,12 @@ TEST(RunMintExperiment, GivesIdenticalResultsOnOneAndTwoThreads) {
       EXPECT_EQ(ra.steps[k].covariance_m2, rb.steps[k].covariance_m2) << "run " << r << " step " << k;
       EXPECT_EQ(ra.steps[k].associations, rb.steps[k].associations) << "run " << r << " step " << k;
     }
-    ASSERT_EQ(ra.sinr.size(), rb.sinr.size()) << "run " << r;
-    for (std::size_t i = 0; i < ra.sinr.size(); ++i) {
-      EXPECT_EQ(ra.sinr[i].true_db, rb.sinr[i].true_db);
-      EXPECT_EQ(ra.sinr[i].estimated_db, rb.sinr[i].estimated_db);
+    ASSERT_EQ(ra.paths.size(), rb.paths.size()) << "run " << r;
+    for (std::size_t i = 0; i < ra.paths.size(); ++i) {
+      EXPECT_EQ(ra.paths[i].va_id, rb.paths[i].va_id);
+      EXPECT_EQ(ra.paths[i].amplitude, rb.paths[i].amplitude);
+      EXPECT_EQ(ra.paths[i].true_sinr_db, rb.paths[i].true_sinr_db);
+      EXPECT_EQ(ra.paths[i].estimated_sinr_db, rb.paths[i].estimated_sinr_db);
     }
   }
 }

@@ -23,7 +23,8 @@ std::string FormatResultTable(const Scenario& scenario, const pipeline::MintSumm
 /// Writes json to path (pretty-printed); throws InputError when the file cannot be written.
 void WriteJson(const std::string& path, const nlohmann::json& json);
 
-/// Writes tracks.csv, runs.csv and virtual_anchors.csv into dir (created if needed).
+/// Writes tracks.csv, runs.csv, paths.csv (ground truth per specular path, first run of each
+/// trajectory) and virtual_anchors.csv (the tracker's VAs) into dir (created if needed).
 void WriteCsv(const std::string& dir, const Scenario& scenario, const pipeline::MintExperimentResult& result);
 
 }  // namespace mirage::io

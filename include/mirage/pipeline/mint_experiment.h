@@ -29,11 +29,16 @@ struct StepRecord {
   bool relocalized = false;     ///< the tracker declared the track lost and restarted
 };
 
-/// SINR observations of one VA at one step (dB).
-struct SinrRecord {
+/// Ground truth of one specular path at one step, with the tracker's SINR estimate for it.
+struct PathRecord {
+  int step = 0;                   ///< step index in the run
+  int anchor = 0;                 ///< physical anchor index
+  int va_id = 0;                  ///< VA id in the simulated channel's VA set
   int order = 0;                  ///< reflection order of the VA
-  double true_db = 0.0;           ///< simulator truth, Eq. (3.25)
-  std::optional<double> estimated_db;  ///< the tracker's online estimate at this step, if any
+  double delay_s = 0.0;           ///< true delay (s)
+  Complex amplitude;              ///< true complex amplitude
+  double true_sinr_db = 0.0;      ///< simulator truth, Eq. (3.25)
+  std::optional<double> estimated_sinr_db;  ///< the tracker's online estimate at this step, if any
 };
 
 /// One Monte-Carlo run.
@@ -42,7 +47,7 @@ struct RunRecord {
   int run = 0;
   Vec2 offset_m = Vec2::Zero();
   std::vector<StepRecord> steps;
-  std::vector<SinrRecord> sinr;  ///< every visible path at every step
+  std::vector<PathRecord> paths;  ///< every visible path at every step
   bool diverged = false;
   double simulate_s = 0.0;       ///< time spent simulating CIRs (s)
   double estimate_s = 0.0;       ///< time spent in MPC extraction and tracking (s)
@@ -51,7 +56,8 @@ struct RunRecord {
 /// All runs of an experiment.
 struct MintExperimentResult {
   std::vector<RunRecord> runs;  ///< ordered by trajectory, then run
-  geometry::VirtualAnchorSet known_vas;  ///< VAs the tracker used
+  geometry::VirtualAnchorSet known_vas;    ///< VAs the tracker used
+  geometry::VirtualAnchorSet channel_vas;  ///< VAs of the simulated channel (PathRecord::va_id)
   double wall_s = 0.0;
 };
 
