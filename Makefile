@@ -34,7 +34,7 @@ bench: build
 sanitize-test: deps
 	@cmake -S . -B $(BUILD_DIR)-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMIRAGE_SANITIZE=ON -DMIRAGE_BUILD_BENCH=OFF > /dev/null
 	@cmake --build $(BUILD_DIR)-asan -j $(JOBS)
-	@cd $(BUILD_DIR)-asan && ctest --output-on-failure -j $(JOBS) -LE slow
+	@cd $(BUILD_DIR)-asan && ctest --output-on-failure -j $(JOBS)
 
 # The scenario parser under libFuzzer with ASan+UBSan, seeded with the examples and the bad
 # inputs of the CLI tests, for FUZZ_SECONDS (default 60).
@@ -44,8 +44,9 @@ fuzz: deps
 	    -DMIRAGE_BUILD_FUZZERS=ON -DMIRAGE_BUILD_TESTS=OFF -DMIRAGE_BUILD_BENCH=OFF > /dev/null
 	@cmake --build $(BUILD_DIR)-fuzz -j $(JOBS) --target scenario_fuzzer
 	@mkdir -p $(BUILD_DIR)-fuzz/corpus && cp examples/*.yaml tests/cli/bad/*.yaml $(BUILD_DIR)-fuzz/corpus/ 2>/dev/null || true
-	@cd examples && ../$(BUILD_DIR)-fuzz/bin/scenario_fuzzer -max_total_time=$(FUZZ_SECONDS) -max_len=16384 \
-	    -timeout=10 -print_final_stats=1 ../$(BUILD_DIR)-fuzz/corpus 2>&1 | tail -n 15
+	@cd examples && status=0; ../$(BUILD_DIR)-fuzz/bin/scenario_fuzzer -max_total_time=$(FUZZ_SECONDS) \
+	    -max_len=16384 -timeout=10 -print_final_stats=1 -artifact_prefix=../$(BUILD_DIR)-fuzz/ ../$(BUILD_DIR)-fuzz/corpus > ../$(BUILD_DIR)-fuzz/fuzz.log 2>&1 \
+	    || status=$$?; tail -n 8 ../$(BUILD_DIR)-fuzz/fuzz.log; exit $$status
 
 clean:
 	rm -rf $(BUILD_DIR) $(BUILD_DIR)-asan $(BUILD_DIR)-fuzz

@@ -100,14 +100,27 @@ void MpcExtractor::AddScaled(Residual& residual, const Component& c, double sign
   const int lo = std::max(0, center - support_samples_);
   const int hi = std::min(sample_count_ - 1, center + support_samples_);
   const Complex scaled = sign * c.amplitude;
-  for (int n = lo; n <= hi; ++n) {
-    const double x = std::abs(n - c.offset) * kTableOversampling;
-    const auto i = static_cast<std::size_t>(x);
-    const double frac = x - static_cast<double>(i);
+  const auto add = [&](int n, std::size_t i, double frac) {
     const double r = autocorrelation_[i] + frac * (autocorrelation_[i + 1] - autocorrelation_[i]);
     auto& v = residual.y[static_cast<std::size_t>(n)];
     v += scaled * r;
     residual.energy[static_cast<std::size_t>(n)] = std::norm(v);
+  };
+  // R((n - offset) T_s) on each side of the component: the table position advances by exactly
+  // kTableOversampling per sample, so the interpolation weight is the same on a side.
+  const int first_right = std::max(lo, static_cast<int>(std::ceil(c.offset)));
+  if (first_right <= hi) {
+    const double x = (first_right - c.offset) * kTableOversampling;
+    auto i = static_cast<std::size_t>(x);
+    const double frac = x - static_cast<double>(i);
+    for (int n = first_right; n <= hi; ++n, i += kTableOversampling) add(n, i, frac);
+  }
+  const int last_left = std::min(hi, first_right - 1);
+  if (last_left >= lo) {
+    const double x = (c.offset - last_left) * kTableOversampling;
+    auto i = static_cast<std::size_t>(x);
+    const double frac = x - static_cast<double>(i);
+    for (int n = last_left; n >= lo; --n, i += kTableOversampling) add(n, i, frac);
   }
   UpdateBlocks(residual, lo, hi);
 }

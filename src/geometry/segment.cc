@@ -13,8 +13,9 @@ std::optional<SegmentCrossing> CrossSegments(const Vec2& p, const Vec2& q, const
   const Vec2 r = q - p;
   const Vec2 s = b - a;
   const double denom = Cross(r, s);
-  // Relative parallelism threshold: sin(angle) below 1e-12.
-  if (std::abs(denom) <= 1e-12 * r.norm() * s.norm()) return std::nullopt;
+  // Relative parallelism threshold: sin(angle) below 1e-12 (squared, to avoid two square roots
+  // in the hottest loop of the visibility test).
+  if (denom * denom <= 1e-24 * r.squaredNorm() * s.squaredNorm()) return std::nullopt;
   const Vec2 ap = a - p;
   const double t = Cross(ap, s) / denom;
   const double u = Cross(ap, r) / denom;
