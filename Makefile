@@ -39,14 +39,15 @@ sanitize-test: deps
 # The scenario parser under libFuzzer with ASan+UBSan, seeded with the examples and the bad
 # inputs of the CLI tests, for FUZZ_SECONDS (default 60).
 FUZZ_SECONDS ?= 60
-fuzz: deps
+fuzz:
+	@bash scripts/install_deps.sh fuzz
 	@CXX=clang++ cmake -S . -B $(BUILD_DIR)-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMIRAGE_SANITIZE=ON \
 	    -DMIRAGE_BUILD_FUZZERS=ON -DMIRAGE_BUILD_TESTS=OFF -DMIRAGE_BUILD_BENCH=OFF > /dev/null
 	@cmake --build $(BUILD_DIR)-fuzz -j $(JOBS) --target scenario_fuzzer
 	@mkdir -p $(BUILD_DIR)-fuzz/corpus && cp examples/*.yaml tests/cli/bad/*.yaml $(BUILD_DIR)-fuzz/corpus/ 2>/dev/null || true
-	@cd examples && status=0; ../$(BUILD_DIR)-fuzz/bin/scenario_fuzzer -max_total_time=$(FUZZ_SECONDS) \
-	    -max_len=16384 -timeout=10 -print_final_stats=1 -artifact_prefix=../$(BUILD_DIR)-fuzz/ ../$(BUILD_DIR)-fuzz/corpus > ../$(BUILD_DIR)-fuzz/fuzz.log 2>&1 \
-	    || status=$$?; tail -n 8 ../$(BUILD_DIR)-fuzz/fuzz.log; exit $$status
+	@cd $(BUILD_DIR)-fuzz && status=0; ./bin/scenario_fuzzer -max_total_time=$(FUZZ_SECONDS) \
+	    -max_len=16384 -timeout=10 -rss_limit_mb=4096 -print_final_stats=1 corpus > fuzz.log 2>&1 \
+	    || status=$$?; tail -n 8 fuzz.log; exit $$status
 
 clean:
 	rm -rf $(BUILD_DIR) $(BUILD_DIR)-asan $(BUILD_DIR)-fuzz

@@ -1,26 +1,34 @@
 // SPDX-License-Identifier: MIT
 // libFuzzer target for the scenario reader: any input must either load or be rejected with
-// io::InputError; a crash, a hang, a sanitizer report or any other exception is a bug.
-// Build and run: make fuzz (clang, -fsanitize=fuzzer,address,undefined).
+// io::InputError; a crash, a hang, a sanitizer report, an out-of-memory or any other exception
+// is a bug. A loaded scenario also builds its VA sets, channel synthesizer and MPC extractor,
+// so that the size limits of the validation are exercised. Build and run: make fuzz.
 #include <unistd.h>
 
 #include <cstdint>
-#include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <string>
 
+#include "mirage/channel/cir_synthesizer.h"
+#include "mirage/dsp/mpc_extractor.h"
+#include "mirage/geometry/virtual_anchor.h"
 #include "mirage/io/input_error.h"
 #include "mirage/io/scenario.h"
 
 namespace {
 
-// One scratch file per fuzzing process; inputs reach the reader through the file system as in
-// `mirage run`.
+// A scratch directory per fuzzing process holding the input and a copy of the seminar-room
+// example, so that inputs with `extends: seminar_room.yaml` exercise the merge code too.
 const std::string& ScratchPath() {
   static const std::string path = [] {
-    const char* dir = std::getenv("TMPDIR");
-    return std::string(dir != nullptr ? dir : "/tmp") + "/mirage_scenario_fuzz_" + std::to_string(getpid()) + ".yaml";
+    const char* tmp = std::getenv("TMPDIR");
+    const auto dir = std::filesystem::path(tmp != nullptr ? tmp : "/tmp") / ("mirage_fuzz_" + std::to_string(getpid()));
+    std::filesystem::create_directories(dir);
+    std::filesystem::copy_file(std::filesystem::path(MIRAGE_SOURCE_DIR) / "examples" / "seminar_room.yaml",
+                               dir / "seminar_room.yaml", std::filesystem::copy_options::overwrite_existing);
+    return (dir / "input.yaml").string();
   }();
   return path;
 }
@@ -33,8 +41,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     out.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
   }
   try {
-    // Small runs keep the parsed experiment cheap; nothing is simulated here.
-    (void)mirage::io::LoadScenario(ScratchPath());
+    const auto scenario = mirage::io::LoadScenario(ScratchPath());
+    const auto& config = scenario.mint;
+    (void)mirage::geometry::VirtualAnchorSet::Generate(config.anchors_m, config.plan, config.channel_max_order);
+    const mirage::channel::CirSynthesizer synthesizer(config.channel);
+    (void)mirage::dsp::MpcExtractor(config.mpc, synthesizer.pulse(), synthesizer.sample_count(),
+                                    config.channel.sample_period_s);
   } catch (const mirage::io::InputError&) {
     // Rejected with a message: the expected outcome for bad input.
   }

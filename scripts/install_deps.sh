@@ -2,6 +2,7 @@
 # SPDX-License-Identifier: MIT
 # Installs the Debian packages mirage needs, only those that are missing.
 # Debian packages are the only dependency source: nothing is downloaded from elsewhere.
+# Usage: install_deps.sh [fuzz]   (fuzz adds clang and libFuzzer for `make fuzz`)
 set -euo pipefail
 
 packages=(
@@ -9,8 +10,10 @@ packages=(
   libeigen3-dev libfftw3-dev libyaml-cpp-dev libcli11-dev libfmt-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   python3 python3-matplotlib python3-numpy
-  clang libclang-rt-14-dev
 )
+if [ "${1:-}" = "fuzz" ]; then
+  packages+=(clang libclang-rt-14-dev)
+fi
 
 missing=()
 for p in "${packages[@]}"; do

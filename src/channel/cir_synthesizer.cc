@@ -15,15 +15,18 @@ int SampleCount(const ChannelOptions& options) {
   return static_cast<int>(std::lround(options.window_length_s / options.sample_period_s));
 }
 
-// Guard band beyond the window (samples): the pulse tails decay below 1e-6 of the peak within
-// 32 pulse durations, so tails that wrap around the circular FFT grid are negligible.
-int GuardSamples(const ChannelOptions& options) {
-  return static_cast<int>(std::ceil(32.0 * options.pulse.duration_s / options.sample_period_s));
-}
+// Guard band beyond the window (samples): tails that wrap around the circular FFT grid are
+// negligible after kPulseTailDurations.
+int GuardSamples(const ChannelOptions& options) { return PulseTailSamples(options.pulse, options.sample_period_s); }
 
 std::size_t FftSize(const ChannelOptions& options) {
   return core::NextFastFftSize(static_cast<std::size_t>(SampleCount(options) + 2 * GuardSamples(options)));
 }
+
+// Bounds that keep the sampled quantities (window, guard, FFT, tables) of a sane size.
+constexpr double kMaxWindowSamples = 1e6;
+constexpr double kMaxPulseSamples = 1000.0;  // T_p / T_s
+constexpr double kMinWindowPulses = 8.0;     // window_length_s / T_p
 
 }  // namespace
 
@@ -43,10 +46,17 @@ std::vector<std::string> Validate(const ChannelOptions& options) {
   if (!(options.window_start_s >= 0.0) || !std::isfinite(options.window_start_s)) {
     problems.push_back("window_start_s must be >= 0 s");
   }
+  if (options.sample_period_s > 0.0 && options.pulse.duration_s / options.sample_period_s > kMaxPulseSamples) {
+    problems.push_back(fmt::format("sample_period_s must be at least pulse.duration_s / {:g} = {:.6g} s",
+                                   kMaxPulseSamples, options.pulse.duration_s / kMaxPulseSamples));
+  }
   if (!(options.window_length_s > 0.0) || !std::isfinite(options.window_length_s)) {
     problems.push_back("window_length_s must be > 0 s");
-  } else if (options.sample_period_s > 0.0 && options.window_length_s / options.sample_period_s > 1e6) {
-    problems.push_back("window_length_s / sample_period_s must be at most 1e6 samples");
+  } else if (options.sample_period_s > 0.0 && options.window_length_s / options.sample_period_s > kMaxWindowSamples) {
+    problems.push_back(fmt::format("window_length_s must span at most {:g} samples of sample_period_s", kMaxWindowSamples));
+  } else if (options.window_length_s < kMinWindowPulses * options.pulse.duration_s) {
+    problems.push_back(fmt::format("window_length_s must be at least {:g} pulse durations ({:.6g} s)", kMinWindowPulses,
+                                   kMinWindowPulses * options.pulse.duration_s));
   }
   if (!std::isfinite(options.snr_at_1m_db)) problems.push_back("snr_at_1m_db must be a finite number of dB");
   return problems;
@@ -59,16 +69,7 @@ CirSynthesizer::CirSynthesizer(const ChannelOptions& options)
       guard_samples_(GuardSamples(options)),
       noise_psd_(core::DbToPowerRatio(-options.snr_at_1m_db)),
       fft_(FftSize(options)) {
-  const std::size_t m = fft_.size();
-  const double df_hz = 1.0 / (static_cast<double>(m) * options_.sample_period_s);
-  bin_frequency_hz_.resize(m);
-  bin_spectrum_.resize(m);
-  const double scale = 1.0 / std::sqrt(options_.sample_period_s);
-  for (std::size_t k = 0; k < m; ++k) {
-    const double f = (k <= m / 2 ? static_cast<double>(k) : static_cast<double>(k) - static_cast<double>(m)) * df_hz;
-    bin_frequency_hz_[k] = f;
-    bin_spectrum_[k] = pulse_.Spectrum(f) * scale;
-  }
+  bin_spectrum_ = pulse_.SampledSpectrum(fft_.size(), options_.sample_period_s);
 }
 
 double CirSynthesizer::DiffusePdp(double delay_s, double los_distance_m) const {
@@ -119,24 +120,31 @@ SynthesizedCir CirSynthesizer::Synthesize(std::span<const SpecularPath> paths, d
     }
   }
 
-  // Diffuse multipath: nu[j] ~ CN(0, S_nu(t_j) T_s) on the window and the guard after it.
+  // Diffuse multipath: nu[j] ~ CN(0, S_nu(t_j) T_s) on the window and the guard after it. Every
+  // sample takes a draw, zero-weighted before the LOS, so the stream's use does not depend on
+  // the geometry.
   if (options_.diffuse.enabled) {
     std::vector<Complex> nu(m, Complex(0.0, 0.0));
     const std::size_t last = static_cast<std::size_t>(sample_count_ + guard_samples_);
+    const double los_delay_s = los_distance_m / core::kSpeedOfLight_mps;
+    const double omega_ts = core::DbToPowerRatio(options_.diffuse.power_ratio_db) / (los_distance_m * los_distance_m) * ts;
     for (std::size_t j = 0; j < last; ++j) {
-      const double pdp = DiffusePdp(start_s + static_cast<double>(j) * ts, los_distance_m);
-      if (pdp > 0.0) nu[j] = diffuse_rng.ComplexNormal(pdp * ts);
+      const double excess_s = start_s + static_cast<double>(j) * ts - los_delay_s;
+      const Complex draw = diffuse_rng.ComplexNormal(1.0);
+      if (excess_s >= 0.0) nu[j] = draw * std::sqrt(omega_ts * DiffusePdpShape(options_.diffuse, excess_s));
     }
-    fft_.Forward(nu, nu);
-    for (std::size_t k = 0; k < m; ++k) spectrum[k] += nu[k];
+    std::vector<Complex> nu_spectrum(m);
+    fft_.Forward(nu, nu_spectrum);
+    for (std::size_t k = 0; k < m; ++k) spectrum[k] += nu_spectrum[k];
   }
 
   for (std::size_t k = 0; k < m; ++k) spectrum[k] *= bin_spectrum_[k];
-  fft_.Inverse(spectrum, spectrum);
+  std::vector<Complex> samples(m);
+  fft_.Inverse(spectrum, samples);
 
   out.cir.start_s = start_s;
   out.cir.sample_period_s = ts;
-  out.cir.samples.assign(spectrum.begin(), spectrum.begin() + sample_count_);
+  out.cir.samples.assign(samples.begin(), samples.begin() + sample_count_);
   for (auto& sample : out.cir.samples) sample += noise_rng.ComplexNormal(noise_psd_);
   return out;
 }

@@ -45,6 +45,21 @@ std::vector<std::string> Validate(const PulseOptions& options) {
   return problems;
 }
 
+int PulseTailSamples(const PulseOptions& options, double sample_period_s) {
+  return static_cast<int>(std::ceil(kPulseTailDurations * options.duration_s / sample_period_s));
+}
+
+std::vector<double> RaisedCosinePulse::SampledSpectrum(std::size_t fft_size, double sample_period_s) const {
+  const double df_hz = 1.0 / (static_cast<double>(fft_size) * sample_period_s);
+  const double scale = 1.0 / std::sqrt(sample_period_s);
+  std::vector<double> spectrum(fft_size);
+  for (std::size_t k = 0; k < fft_size; ++k) {
+    const double index = k <= fft_size / 2 ? static_cast<double>(k) : static_cast<double>(k) - static_cast<double>(fft_size);
+    spectrum[k] = Spectrum(index * df_hz) * scale;
+  }
+  return spectrum;
+}
+
 RaisedCosinePulse::RaisedCosinePulse(const PulseOptions& options) : options_(options) {
   const double t = options_.duration_s;
   const double edge = band_edge_hz();

@@ -2,7 +2,9 @@
 #include "mirage/core/rng.h"
 
 #include <cassert>
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace mirage::core {
 namespace {
@@ -118,7 +120,7 @@ int Rng::Poisson(double mean) {
     return k;
   }
   const double x = std::floor(mean + std::sqrt(mean) * Normal() + 0.5);
-  return x < 0.0 ? 0 : static_cast<int>(x);
+  return static_cast<int>(std::clamp(x, 0.0, static_cast<double>(std::numeric_limits<int>::max())));
 }
 
 }  // namespace mirage::core

@@ -48,38 +48,33 @@ MpcExtractor::MpcExtractor(const MpcExtractorOptions& options, const channel::Ra
       sample_period_s_(sample_period_s),
       threshold_ratio_(core::DbToPowerRatio(options.relative_threshold_db)),
       support_samples_(SupportSamples(pulse, sample_period_s)),
-      // Zero padding by 32 pulse durations keeps the circular correlation from wrapping: the
-      // template's tails are below 1e-6 there.
-      fft_(core::NextFastFftSize(static_cast<std::size_t>(
-          sample_count + static_cast<int>(std::ceil(32.0 * pulse.options().duration_s / sample_period_s))))) {
+      // Zero padding by the pulse's tail length keeps the circular correlation from wrapping.
+      fft_(core::NextFastFftSize(
+          static_cast<std::size_t>(sample_count + channel::PulseTailSamples(pulse.options(), sample_period_s)))) {
+  assert(sample_count > 0);
   autocorrelation_.resize(static_cast<std::size_t>((support_samples_ + 2) * kTableOversampling));
   for (std::size_t i = 0; i < autocorrelation_.size(); ++i) {
     autocorrelation_[i] = pulse_.Autocorrelation(static_cast<double>(i) * sample_period_s_ / kTableOversampling);
   }
-  const std::size_t m = fft_.size();
-  const double df_hz = 1.0 / (static_cast<double>(m) * sample_period_s_);
-  template_spectrum_.resize(m);
-  for (std::size_t k = 0; k < m; ++k) {
-    const double f = (k <= m / 2 ? static_cast<double>(k) : static_cast<double>(k) - static_cast<double>(m)) * df_hz;
-    template_spectrum_[k] = pulse_.Spectrum(f) / std::sqrt(sample_period_s_);
-  }
+  template_spectrum_ = pulse_.SampledSpectrum(fft_.size(), sample_period_s_);
 }
 
 std::vector<Complex> MpcExtractor::MatchedFilter(const core::Cir& cir) const {
   assert(static_cast<int>(cir.samples.size()) == sample_count_);
-  std::vector<Complex> buffer(fft_.size(), Complex(0.0, 0.0));
-  std::copy(cir.samples.begin(), cir.samples.end(), buffer.begin());
-  fft_.Forward(buffer, buffer);
+  std::vector<Complex> padded(fft_.size(), Complex(0.0, 0.0));
+  std::copy(cir.samples.begin(), cir.samples.end(), padded.begin());
+  std::vector<Complex> spectrum(fft_.size());
+  fft_.Forward(padded, spectrum);
   // y = r correlated with the real, even template: Y[k] = R[k] conj(S[k]) = R[k] S[k].
-  for (std::size_t k = 0; k < buffer.size(); ++k) buffer[k] *= template_spectrum_[k];
-  fft_.Inverse(buffer, buffer);
-  buffer.resize(static_cast<std::size_t>(sample_count_));
-  return buffer;
+  for (std::size_t k = 0; k < spectrum.size(); ++k) spectrum[k] *= template_spectrum_[k];
+  fft_.Inverse(spectrum, padded);
+  padded.resize(static_cast<std::size_t>(sample_count_));
+  return padded;
 }
 
 MpcExtractor::Component MpcExtractor::Refine(const std::vector<Complex>& y, int n) const {
   Component c;
-  c.offset = n;
+  c.offset_samples = n;
   c.amplitude = y[static_cast<std::size_t>(n)];
   if (n <= 0 || n >= sample_count_ - 1) return c;
   const Complex ya = y[static_cast<std::size_t>(n - 1)];
@@ -89,14 +84,14 @@ MpcExtractor::Component MpcExtractor::Refine(const std::vector<Complex>& y, int 
   const double curvature = a - 2.0 * b + cc;
   if (curvature >= 0.0) return c;  // not a local maximum of |y|^2
   const double delta = std::clamp(0.5 * (a - cc) / curvature, -0.5, 0.5);
-  c.offset = n + delta;
+  c.offset_samples = n + delta;
   // Quadratic (Lagrange) interpolation of the complex MF output at the refined delay.
   c.amplitude = yb + 0.5 * delta * (yc - ya) + 0.5 * delta * delta * (ya - 2.0 * yb + yc);
   return c;
 }
 
 void MpcExtractor::AddScaled(Residual& residual, const Component& c, double sign) const {
-  const int center = static_cast<int>(std::lround(c.offset));
+  const int center = static_cast<int>(std::lround(c.offset_samples));
   const int lo = std::max(0, center - support_samples_);
   const int hi = std::min(sample_count_ - 1, center + support_samples_);
   const Complex scaled = sign * c.amplitude;
@@ -108,16 +103,16 @@ void MpcExtractor::AddScaled(Residual& residual, const Component& c, double sign
   };
   // R((n - offset) T_s) on each side of the component: the table position advances by exactly
   // kTableOversampling per sample, so the interpolation weight is the same on a side.
-  const int first_right = std::max(lo, static_cast<int>(std::ceil(c.offset)));
+  const int first_right = std::max(lo, static_cast<int>(std::ceil(c.offset_samples)));
   if (first_right <= hi) {
-    const double x = (first_right - c.offset) * kTableOversampling;
+    const double x = (first_right - c.offset_samples) * kTableOversampling;
     auto i = static_cast<std::size_t>(x);
     const double frac = x - static_cast<double>(i);
     for (int n = first_right; n <= hi; ++n, i += kTableOversampling) add(n, i, frac);
   }
   const int last_left = std::min(hi, first_right - 1);
   if (last_left >= lo) {
-    const double x = (c.offset - last_left) * kTableOversampling;
+    const double x = (c.offset_samples - last_left) * kTableOversampling;
     auto i = static_cast<std::size_t>(x);
     const double frac = x - static_cast<double>(i);
     for (int n = last_left; n >= lo; --n, i += kTableOversampling) add(n, i, frac);
@@ -148,7 +143,7 @@ int MpcExtractor::ArgMax(const Residual& residual) const {
 void MpcExtractor::Readjust(Residual& residual, Component& c) const {
   // Add the component back, search its peak again within +-2 samples, subtract the new estimate.
   AddScaled(residual, c, +1.0);
-  const int center = std::clamp(static_cast<int>(std::lround(c.offset)), 0, sample_count_ - 1);
+  const int center = std::clamp(static_cast<int>(std::lround(c.offset_samples)), 0, sample_count_ - 1);
   int best = center;
   for (int n = std::max(0, center - 2); n <= std::min(sample_count_ - 1, center + 2); ++n) {
     if (residual.energy[static_cast<std::size_t>(n)] > residual.energy[static_cast<std::size_t>(best)]) best = n;
@@ -182,7 +177,7 @@ std::vector<Mpc> MpcExtractor::Extract(const core::Cir& cir) const {
     // the corrected neighbours removed.
     bool overlapped = false;
     for (std::size_t j = 0; j + 1 < found.size(); ++j) {
-      if (std::abs(found[j].offset - c.offset) > support_samples_) continue;
+      if (std::abs(found[j].offset_samples - c.offset_samples) > support_samples_) continue;
       Readjust(residual, found[j]);
       overlapped = true;
     }
@@ -192,7 +187,7 @@ std::vector<Mpc> MpcExtractor::Extract(const core::Cir& cir) const {
   mpcs.reserve(found.size());
   for (const auto& c : found) {
     Mpc mpc;
-    mpc.delay_s = cir.start_s + c.offset * sample_period_s_;
+    mpc.delay_s = cir.start_s + c.offset_samples * sample_period_s_;
     mpc.range_m = mpc.delay_s * core::kSpeedOfLight_mps;
     mpc.amplitude = c.amplitude;
     mpcs.push_back(mpc);

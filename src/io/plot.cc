@@ -62,7 +62,16 @@ json PlotData(const Scenario& scenario, const pipeline::MintExperimentResult& re
     json errors = json::array();
     json truth = json::array();
     json ellipses = json::array();
-    const int central = (config.run_grid.nx * config.run_grid.ny) / 2;  // the zero-offset grid point
+    // The truth and ellipses of the run closest to the grid centre among the runs present.
+    int central = -1;
+    double central_offset_m = 0.0;
+    for (const auto& run : result.runs) {
+      if (run.trajectory != static_cast<int>(t)) continue;
+      if (central < 0 || run.offset_m.norm() < central_offset_m) {
+        central = run.run;
+        central_offset_m = run.offset_m.norm();
+      }
+    }
     for (const auto& run : result.runs) {
       if (run.trajectory != static_cast<int>(t)) continue;
       json est = json::array();

@@ -21,7 +21,7 @@ json ErrorJson(const eval::ErrorStats& e) {
 
 json PebJson(const pipeline::GroupSummary& g) {
   if (!g.peb_mean_m) return nullptr;
-  return {{"mean", *g.peb_mean_m}, {"p50", *g.peb_p50_m}, {"singular_steps", g.peb_singular_steps}};
+  return {{"mean", *g.peb_mean_m}, {"p50", *g.peb_p50_m}, {"rms", *g.peb_rms_m}, {"singular_steps", g.peb_singular_steps}};
 }
 
 json GroupJson(const pipeline::GroupSummary& g) {
@@ -32,6 +32,10 @@ json GroupJson(const pipeline::GroupSummary& g) {
             {"diverged_runs", g.diverged_runs},
             {"peb_m", PebJson(g)}};
   j["rmse_over_mean_peb"] = g.peb_mean_m ? json(g.error.rmse / *g.peb_mean_m) : json(nullptr);
+  j["rmse_over_rms_peb"] = g.peb_rms_m ? json(g.error.rmse / *g.peb_rms_m) : json(nullptr);
+  j["tracker_events"] = {{"relocalizations", g.relocalizations},
+                         {"constrained_steps", g.constrained_steps},
+                         {"rejected_updates", g.rejected_updates}};
   return j;
 }
 
@@ -41,6 +45,11 @@ json SinrJson(const std::map<std::string, pipeline::SinrStats>& stats) {
     j[key] = {{"count", s.count}, {"mean", s.mean_db}, {"p10", s.p10_db}, {"p50", s.p50_db}, {"p90", s.p90_db}};
   }
   return j;
+}
+
+// Throws when a stream failed (disk full, ...) so that a truncated file never passes silently.
+void CheckWritten(const std::ofstream& out, const std::string& path) {
+  if (!out) throw InputError(path + ": write failed");
 }
 
 std::ofstream OpenForWriting(const std::string& path) {
@@ -135,7 +144,8 @@ std::string FormatResultTable(const Scenario& scenario, const pipeline::MintSumm
 void WriteJson(const std::string& path, const nlohmann::json& json) {
   auto out = OpenForWriting(path);
   out << json.dump(2) << "\n";
-  if (!out) throw InputError(path + ": write failed");
+  out.flush();
+  CheckWritten(out, path);
 }
 
 void WriteCsv(const std::string& dir, const Scenario& scenario, const pipeline::MintExperimentResult& result) {
@@ -154,6 +164,8 @@ void WriteCsv(const std::string& dir, const Scenario& scenario, const pipeline::
                            s.peb_m ? fmt::format("{:.5f}", *s.peb_m) : "", s.associations, s.relocalized ? 1 : 0);
       }
     }
+    out.flush();
+    CheckWritten(out, dir + "/tracks.csv");
   }
   {
     auto out = OpenForWriting(dir + "/runs.csv");
@@ -166,6 +178,8 @@ void WriteCsv(const std::string& dir, const Scenario& scenario, const pipeline::
                          config.trajectories[static_cast<std::size_t>(run.trajectory)].name, run.run, run.offset_m.x(),
                          run.offset_m.y(), run.steps.size(), e.rmse, e.p90, run.diverged ? 1 : 0);
     }
+    out.flush();
+    CheckWritten(out, dir + "/runs.csv");
   }
   {
     // The per-path ground truth of the first run of each trajectory (all runs would be tens of
@@ -183,6 +197,8 @@ void WriteCsv(const std::string& dir, const Scenario& scenario, const pipeline::
                            p.true_sinr_db, p.estimated_sinr_db ? fmt::format("{:.2f}", *p.estimated_sinr_db) : "");
       }
     }
+    out.flush();
+    CheckWritten(out, dir + "/paths.csv");
   }
   {
     auto out = OpenForWriting(dir + "/virtual_anchors.csv");
@@ -197,6 +213,8 @@ void WriteCsv(const std::string& dir, const Scenario& scenario, const pipeline::
                          config.anchor_ids[static_cast<std::size_t>(va.anchor_index)], va.order, va.position_m.x(),
                          va.position_m.y(), walls, va.reflection_gain);
     }
+    out.flush();
+    CheckWritten(out, dir + "/virtual_anchors.csv");
   }
 }
 

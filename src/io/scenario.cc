@@ -1,12 +1,16 @@
 // SPDX-License-Identifier: MIT
 #include "mirage/io/scenario.h"
 
+#include <algorithm>
+#include <limits>
 #include <map>
 #include <memory>
 #include <set>
 
 #include <fmt/format.h>
 
+#include "mirage/core/constants.h"
+#include "mirage/geometry/segment.h"
 #include "mirage/geometry/trajectory.h"
 #include "mirage/io/yaml_reader.h"
 
@@ -14,6 +18,39 @@ namespace mirage::io {
 namespace {
 
 constexpr double kHuge = 1e9;
+// Work and memory limits that keep a valid-looking file from exhausting the machine.
+constexpr double kMaxStepsPerTrajectory = 1e6;
+constexpr double kMaxVirtualAnchorsPerAnchor = 2e5;
+// Runs per trajectory: below the stride of the seed streams (trajectory * 1000003 + run).
+constexpr int kMaxRuns = 1'000'000;
+constexpr int kMaxThreads = 1024;
+
+bool IsPlainName(const std::string& name) { return name.find_first_of(",\"\n\r") == std::string::npos; }
+
+// The run grid's extreme offsets (the zero offset first).
+std::vector<Vec2> GridCorners(const pipeline::RunGrid& grid) {
+  const double hx = 0.5 * (grid.nx - 1) * grid.spacing_m;
+  const double hy = 0.5 * (grid.ny - 1) * grid.spacing_m;
+  return {Vec2::Zero(), Vec2(-hx, -hy), Vec2(hx, -hy), Vec2(-hx, hy), Vec2(hx, hy)};
+}
+
+// Upper bound of the number of VAs per anchor up to `order` with `walls` walls.
+double VirtualAnchorCount(std::size_t walls, int order) {
+  double count = 1.0, level = 1.0;
+  for (int k = 1; k <= order; ++k) {
+    level *= k == 1 ? static_cast<double>(walls) : static_cast<double>(walls) - 1.0;
+    count += level;
+  }
+  return count;
+}
+
+void CheckVirtualAnchorCount(YamlMap& section, const std::string& key, std::size_t walls, int order) {
+  const double count = VirtualAnchorCount(walls, order);
+  if (count > kMaxVirtualAnchorsPerAnchor) {
+    section.Fail(key, fmt::format("order {} with {} walls gives up to {:.3g} virtual anchors per anchor, more than {:g}",
+                                  order, walls, count, kMaxVirtualAnchorsPerAnchor));
+  }
+}
 
 // Runs a component's Validate() and reports the first problem against the section's key path.
 template <typename Options>
@@ -23,6 +60,36 @@ void Check(const Options& options, const YamlMap& section) {
     const std::string& p = problems.front();
     const auto space = p.find(' ');
     section.Fail(p.substr(0, space), p.substr(space + 1));
+  }
+}
+
+// The CIR window must contain every LOS delay the trajectories produce, with room after it.
+void CheckWindowCoversLos(YamlMap& m, const pipeline::MintExperimentConfig& config) {
+  double min_m = std::numeric_limits<double>::infinity(), max_m = 0.0;
+  for (const auto& spec : config.trajectories) {
+    for (const Vec2& offset : GridCorners(config.run_grid)) {
+      for (std::size_t i = 0; i < spec.waypoints_m.size(); ++i) {
+        for (const Vec2& anchor : config.anchors_m) {
+          // The distance to a point is convex along a segment: its maximum is at a waypoint.
+          max_m = std::max(max_m, (spec.waypoints_m[i] + offset - anchor).norm());
+          if (i > 0) {
+            min_m = std::min(min_m, geometry::DistanceToSegment(anchor, spec.waypoints_m[i - 1] + offset,
+                                                                spec.waypoints_m[i] + offset));
+          }
+        }
+      }
+    }
+  }
+  const auto& o = config.channel;
+  if (o.window_start_s > min_m / core::kSpeedOfLight_mps) {
+    m.Fail("window_start_s", fmt::format("{} s starts after the earliest LOS delay along the trajectories ({:.6g} s)",
+                                         FormatValue(o.window_start_s), min_m / core::kSpeedOfLight_mps));
+  }
+  const double needed_s = max_m / core::kSpeedOfLight_mps + 8.0 * o.pulse.duration_s;
+  if (o.window_start_s + o.window_length_s < needed_s) {
+    m.Fail("window_length_s", fmt::format("the window ends at {:.6g} s, before the latest LOS delay along the "
+                                          "trajectories plus 8 pulse durations ({:.6g} s)",
+                                          o.window_start_s + o.window_length_s, needed_s));
   }
 }
 
@@ -51,6 +118,7 @@ channel::DiffuseOptions ReadDiffuse(YamlMap m) {
 void ReadChannel(YamlMap m, pipeline::MintExperimentConfig& config) {
   channel::ChannelOptions& o = config.channel;
   config.channel_max_order = m.Integer("max_order", config.channel_max_order, 0, geometry::kMaxVirtualAnchorOrder);
+  CheckVirtualAnchorCount(m, "max_order", config.plan.walls().size(), config.channel_max_order);
   o.sample_period_s = m.NumberInRange("sample_period_s", o.sample_period_s, 1e-15, 1e-3, "s");
   o.window_start_s = m.NumberInRange("window_start_s", o.window_start_s, 0.0, 1.0, "s");
   o.window_length_s = m.NumberInRange("window_length_s", o.window_length_s, 1e-12, 1.0, "s");
@@ -59,6 +127,7 @@ void ReadChannel(YamlMap m, pipeline::MintExperimentConfig& config) {
   o.diffuse = ReadDiffuse(m.OptionalMap("diffuse"));
   m.RejectUnknownKeys();
   Check(o, m);
+  CheckWindowCoversLos(m, config);
 }
 
 dsp::MpcExtractorOptions ReadMpc(YamlMap m) {
@@ -86,7 +155,7 @@ methods::mint::VaVarianceOptions ReadVariance(YamlMap m) {
   return o;
 }
 
-methods::mint::MintOptions ReadMint(YamlMap m) {
+methods::mint::MintOptions ReadMint(YamlMap m, std::size_t walls) {
   methods::mint::MintOptions o;
   o.cutoff_m = m.NumberInRange("cutoff_m", o.cutoff_m, 1e-9, kHuge, "m");
   o.range_sigma_m = m.NumberInRange("range_sigma_m", o.range_sigma_m, 1e-9, kHuge, "m");
@@ -94,6 +163,7 @@ methods::mint::MintOptions ReadMint(YamlMap m) {
   o.initial_velocity_sigma_mps =
       m.NumberInRange("initial_velocity_sigma_mps", o.initial_velocity_sigma_mps, 1e-9, kHuge, "m/s");
   o.max_order = m.Integer("max_order", o.max_order, 0, geometry::kMaxVirtualAnchorOrder);
+  CheckVirtualAnchorCount(m, "max_order", walls, o.max_order);
   o.reassociate = m.Boolean("reassociate", o.reassociate);
   o.constrain_to_room = m.Boolean("constrain_to_room", o.constrain_to_room);
   o.innovation_gate_chi2 = m.NumberInRange("innovation_gate_chi2", o.innovation_gate_chi2, 0.0, 1e6, "");
@@ -131,10 +201,11 @@ geometry::FloorPlan ReadFloorPlan(YamlMap m, const std::map<std::string, double>
     if (w.Has("polyline_m")) {
       points = w.Points("polyline_m", 2);
       closed = w.Boolean("closed", false);
+      if (closed && points.size() < 3) w.Fail("closed", "a closed polyline needs at least 3 points");
     } else {
       points = {w.Point("start_m"), w.Point("end_m")};
     }
-    double coeff = 0.5;
+    double coeff = geometry::Wall{}.reflection_coeff;
     std::string label;
     if (w.Has("material")) {
       label = w.String("material");
@@ -153,6 +224,15 @@ geometry::FloorPlan ReadFloorPlan(YamlMap m, const std::map<std::string, double>
         w.Fail(w.Has("polyline_m") ? "polyline_m" : "end_m",
                fmt::format("wall segment {} has zero length (from [{}, {}] to [{}, {}] m)", i, FormatValue(a.x()),
                            FormatValue(a.y()), FormatValue(b.x()), FormatValue(b.y())));
+      }
+      for (const auto& other : walls) {
+        const bool same = ((other.start_m - a).norm() < 1e-6 && (other.end_m - b).norm() < 1e-6) ||
+                          ((other.start_m - b).norm() < 1e-6 && (other.end_m - a).norm() < 1e-6);
+        if (same) {
+          w.Fail(w.Has("polyline_m") ? "polyline_m" : "end_m",
+                 fmt::format("wall segment {} from [{}, {}] to [{}, {}] m repeats an earlier wall", i, FormatValue(a.x()),
+                             FormatValue(a.y()), FormatValue(b.x()), FormatValue(b.y())));
+        }
       }
       walls.push_back({a, b, coeff, label});
     }
@@ -199,8 +279,8 @@ Scenario LoadScenario(const std::string& path, const ScenarioOverrides& override
   scenario.method = root.String("method");
   if (scenario.method != "mint") root.Fail("method", "unknown method '" + scenario.method + "' (available: mint)");
   config.seed = root.Unsigned("seed", config.seed);
-  config.runs = root.Integer("runs", config.runs, 1, 1'000'000);
-  config.threads = root.Integer("threads", config.threads, 0, 1024);
+  config.runs = root.Integer("runs", config.runs, 1, kMaxRuns);
+  config.threads = root.Integer("threads", config.threads, 0, kMaxThreads);
   config.perturb_initial_position = root.Boolean("perturb_initial_position", config.perturb_initial_position);
   {
     YamlMap grid = root.OptionalMap("run_grid");
@@ -227,6 +307,7 @@ Scenario LoadScenario(const std::string& path, const ScenarioOverrides& override
   for (auto& a : root.MapList("anchors", false)) {
     const std::string id = a.String("id");
     if (!ids.insert(id).second) a.Fail("id", "duplicate anchor id '" + id + "'");
+    if (!IsPlainName(id)) a.Fail("id", "must not contain commas, quotes or line breaks (it goes into CSV files)");
     const Vec2 p = a.Point("position_m");
     CheckInside(config.plan, p, a, "position_m", "anchor '" + id + "'");
     a.RejectUnknownKeys();
@@ -243,14 +324,27 @@ Scenario LoadScenario(const std::string& path, const ScenarioOverrides& override
     if (!(spec.speed_mps > 0.0)) t.Fail("speed_mps", FormatValue(spec.speed_mps) + " m/s must be > 0 m/s");
     spec.dt_s = t.Number("dt_s", spec.dt_s);
     if (!(spec.dt_s > 0.0)) t.Fail("dt_s", FormatValue(spec.dt_s) + " s must be > 0 s (time steps go forward)");
-    for (std::size_t i = 0; i < spec.waypoints_m.size(); ++i) {
-      CheckInside(config.plan, spec.waypoints_m[i], t, "waypoints_m", fmt::format("waypoint {}", i));
-      if (i > 0 && !config.plan.IsLegClear(spec.waypoints_m[i - 1], spec.waypoints_m[i])) {
-        t.Fail("waypoints_m", fmt::format("the leg from waypoint {} to {} crosses a wall or an obstacle", i - 1, i));
-      }
-    }
-    if (geometry::PolylineLength(spec.waypoints_m) < spec.speed_mps * spec.dt_s) {
+    if (!IsPlainName(spec.name)) t.Fail("name", "must not contain commas, quotes or line breaks (it goes into CSV files)");
+    const double length_m = geometry::PolylineLength(spec.waypoints_m);
+    if (length_m < spec.speed_mps * spec.dt_s) {
       t.Fail("waypoints_m", "the trajectory is shorter than one step (speed_mps * dt_s)");
+    }
+    if (length_m / (spec.speed_mps * spec.dt_s) > kMaxStepsPerTrajectory) {
+      t.Fail("speed_mps", fmt::format("speed_mps * dt_s gives more than {:g} steps for this trajectory", kMaxStepsPerTrajectory));
+    }
+    // Every run walks the trajectory shifted by its grid offset: check the grid's corners too.
+    for (const Vec2& offset : GridCorners(config.run_grid)) {
+      const std::string shifted =
+          offset.norm() > 0.0 ? fmt::format(" (shifted by the run grid's corner [{}, {}] m)", FormatValue(offset.x()),
+                                            FormatValue(offset.y()))
+                              : std::string();
+      for (std::size_t i = 0; i < spec.waypoints_m.size(); ++i) {
+        CheckInside(config.plan, spec.waypoints_m[i] + offset, t, "waypoints_m", fmt::format("waypoint {}{}", i, shifted));
+        if (i > 0 && !config.plan.IsLegClear(spec.waypoints_m[i - 1] + offset, spec.waypoints_m[i] + offset)) {
+          t.Fail("waypoints_m",
+                 fmt::format("the leg from waypoint {} to {}{} crosses a wall or an obstacle", i - 1, i, shifted));
+        }
+      }
     }
     t.RejectUnknownKeys();
     config.trajectories.push_back(std::move(spec));
@@ -258,7 +352,7 @@ Scenario LoadScenario(const std::string& path, const ScenarioOverrides& override
 
   ReadChannel(root.OptionalMap("channel"), config);
   config.mpc = ReadMpc(root.OptionalMap("mpc"));
-  config.mint = ReadMint(root.OptionalMap("mint"));
+  config.mint = ReadMint(root.OptionalMap("mint"), config.plan.walls().size());
   {
     YamlMap evaluation = root.OptionalMap("evaluation");
     YamlMap divergence = evaluation.OptionalMap("divergence");
@@ -271,12 +365,16 @@ Scenario LoadScenario(const std::string& path, const ScenarioOverrides& override
   root.RejectUnknownKeys();
 
   if (overrides.runs) {
-    if (*overrides.runs < 1) throw InputError(fmt::format("--runs: {} must be >= 1", *overrides.runs));
+    if (*overrides.runs < 1 || *overrides.runs > kMaxRuns) {
+      throw InputError(fmt::format("--runs: {} is out of range, expected [1, {}]", *overrides.runs, kMaxRuns));
+    }
     config.runs = *overrides.runs;
   }
   if (overrides.seed) config.seed = *overrides.seed;
   if (overrides.threads) {
-    if (*overrides.threads < 0) throw InputError(fmt::format("--threads: {} must be >= 0", *overrides.threads));
+    if (*overrides.threads < 0 || *overrides.threads > kMaxThreads) {
+      throw InputError(fmt::format("--threads: {} is out of range, expected [0, {}]", *overrides.threads, kMaxThreads));
+    }
     config.threads = *overrides.threads;
   }
   return scenario;

@@ -1,9 +1,11 @@
 // SPDX-License-Identifier: MIT
 #include "mirage/io/yaml_reader.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <limits>
+#include <set>
 
 #include <fmt/format.h>
 
@@ -36,8 +38,25 @@ YAML::Node LoadFile(const std::string& path) {
   }
 }
 
+// Map keys must be plain scalars and appear once (yaml-cpp accepts duplicates silently and keeps
+// one of them, which one depending on how the node is read).
+void CheckKeys(const YAML::Node& map, const std::string& path, const std::string& file) {
+  std::set<std::string> seen;
+  for (const auto& kv : map) {
+    const std::string where = fmt::format("{}:{}", file, kv.first.Mark().line + 1);
+    if (!kv.first.IsScalar()) {
+      throw InputError(fmt::format("{}: {}: keys must be plain names, got {}", where, path.empty() ? "document" : path,
+                                   ScalarText(kv.first)));
+    }
+    if (!seen.insert(kv.first.Scalar()).second) {
+      throw InputError(fmt::format("{}: {}: duplicate key", where, JoinPath(path, kv.first.Scalar())));
+    }
+  }
+}
+
 void Merge(YAML::Node base, const YAML::Node& over, const std::string& path, const std::string& file,
            YamlOrigins& origins) {
+  CheckKeys(over, path, file);
   for (const auto& kv : over) {
     const auto key = kv.first.as<std::string>();
     const std::string key_path = JoinPath(path, key);
@@ -108,6 +127,7 @@ YamlMap::YamlMap(YAML::Node node, std::string path, std::shared_ptr<const YamlOr
     throw InputError(fmt::format("{}: {}: expected a map of keys, got {}", Where(node_, path_),
                                  path_.empty() ? "document" : path_, ScalarText(node_)));
   }
+  CheckKeys(node_, path_, origins_->FileOf(path_));
 }
 
 bool YamlMap::Has(const std::string& key) const { return static_cast<bool>(node_[key]); }
@@ -122,8 +142,20 @@ std::string YamlMap::Where(const YAML::Node& node, const std::string& key_path) 
 }
 
 void YamlMap::Fail(const std::string& key, const std::string& message) const {
-  const YAML::Node child = node_[key];
-  const YAML::Node& at = child ? child : node_;
+  // A dotted key ("relocalization.search_step_m", from a nested Validate()) names a node in a
+  // sub-map; point at the deepest node that exists so file and line belong together.
+  // Node::reset rebinds; operator= would overwrite the referenced node inside the document.
+  YAML::Node at;
+  at.reset(node_);
+  std::size_t begin = 0;
+  while (begin <= key.size()) {
+    const auto dot = std::min(key.find('.', begin), key.size());
+    const YAML::Node& map = at;  // const lookup: non-const operator[] would insert
+    const YAML::Node child = map.IsMap() ? map[key.substr(begin, dot - begin)] : YAML::Node();
+    if (!child) break;
+    at.reset(child);
+    begin = dot + 1;
+  }
   throw InputError(fmt::format("{}: {}: {}", Where(at, KeyPath(key)), KeyPath(key), message));
 }
 

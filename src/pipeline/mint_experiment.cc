@@ -7,6 +7,8 @@
 #include <cmath>
 #include <map>
 #include <memory>
+#include <mutex>
+#include <string>
 #include <thread>
 
 #include "mirage/channel/cir_synthesizer.h"
@@ -43,8 +45,12 @@ RunRecord RunOne(const Shared& shared, int trajectory, int run) {
   const TrajectorySpec& spec = config.trajectories[static_cast<std::size_t>(trajectory)];
   const auto stream = static_cast<std::uint64_t>(trajectory) * 1'000'003ULL + static_cast<std::uint64_t>(run);
   const core::Rng run_rng(config.seed, stream);
-  core::Rng diffuse_rng = run_rng.Substream("diffuse");
-  core::Rng noise_rng = run_rng.Substream("noise");
+  // One stream per anchor and purpose, so that adding an anchor shifts no other CIR's noise.
+  std::vector<core::Rng> diffuse_rng, noise_rng;
+  for (std::size_t a = 0; a < config.anchors_m.size(); ++a) {
+    diffuse_rng.push_back(run_rng.Substream("diffuse/" + std::to_string(a)));
+    noise_rng.push_back(run_rng.Substream("noise/" + std::to_string(a)));
+  }
   core::Rng init_rng = run_rng.Substream("init");
 
   RunRecord record;
@@ -80,7 +86,8 @@ RunRecord RunOne(const Shared& shared, int trajectory, int run) {
                                                        config.channel.pulse.carrier_hz);
       const double los_distance_m =
           std::max((sample.position_m - config.anchors_m[static_cast<std::size_t>(a)]).norm(), 0.01);
-      cirs.push_back(shared.synthesizer->Synthesize(paths, los_distance_m, diffuse_rng, noise_rng));
+      cirs.push_back(shared.synthesizer->Synthesize(paths, los_distance_m, diffuse_rng[static_cast<std::size_t>(a)],
+                                                    noise_rng[static_cast<std::size_t>(a)]));
       for (const auto& truth : cirs.back().paths) {
         information.push_back({shared.channel_vas[truth.va_id].position_m, truth.sinr});
         path_index_by_channel_va[truth.va_id] = record.paths.size();
@@ -120,6 +127,9 @@ RunRecord RunOne(const Shared& shared, int trajectory, int run) {
     s.peb_m = eval::PositionErrorBound(sample.position_m, information, sigma1_m);
     s.associations = static_cast<int>(step.associations.size());
     s.relocalized = step.relocalized;
+    if (step.relocalized) ++record.relocalizations;
+    if (step.constrained) ++record.constrained_steps;
+    if (step.update.rejection == estimation::UpdateRejection::kNotPositiveDefinite) ++record.rejected_updates;
     record.steps.push_back(s);
   }
   std::vector<double> errors;
@@ -130,14 +140,6 @@ RunRecord RunOne(const Shared& shared, int trajectory, int run) {
 }
 
 }  // namespace
-
-Vec2 RunOffset(const RunGrid& grid, int run) {
-  const int cells = grid.nx * grid.ny;
-  const int k = run % cells;
-  const int ix = k % grid.nx;
-  const int iy = k / grid.nx;
-  return {(ix - 0.5 * (grid.nx - 1)) * grid.spacing_m, (iy - 0.5 * (grid.ny - 1)) * grid.spacing_m};
-}
 
 MintExperimentResult RunMintExperiment(const MintExperimentConfig& config, const ProgressCallback& progress) {
   const auto t_start = Clock::now();
@@ -162,9 +164,19 @@ MintExperimentResult RunMintExperiment(const MintExperimentConfig& config, const
   result.runs.resize(static_cast<std::size_t>(total));
   std::atomic<int> next{0};
   std::atomic<int> finished{0};
+  // An exception in a worker (out of memory) must reach the caller, not std::terminate.
+  std::mutex error_mutex;
+  std::exception_ptr error;
   const auto worker = [&]() {
     for (int job = next++; job < total; job = next++) {
-      result.runs[static_cast<std::size_t>(job)] = RunOne(shared, job / config.runs, job % config.runs);
+      try {
+        result.runs[static_cast<std::size_t>(job)] = RunOne(shared, job / config.runs, job % config.runs);
+      } catch (...) {
+        const std::lock_guard<std::mutex> lock(error_mutex);
+        if (!error) error = std::current_exception();
+        next = total;  // stop handing out jobs
+        return;
+      }
       const int done = ++finished;
       if (progress) progress(done, total);
     }
@@ -178,6 +190,7 @@ MintExperimentResult RunMintExperiment(const MintExperimentConfig& config, const
     for (int i = 0; i < threads; ++i) pool.emplace_back(worker);
     for (auto& t : pool) t.join();
   }
+  if (error) std::rethrow_exception(error);
   result.known_vas = std::move(shared.known_vas);
   result.channel_vas = std::move(shared.channel_vas);
   result.wall_s = Seconds(Clock::now() - t_start);

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "mirage/pipeline/mint_summary.h"
 
+#include <cmath>
 #include <numeric>
 
 namespace mirage::pipeline {
@@ -25,6 +26,9 @@ GroupSummary Group(const std::string& name, const std::vector<const RunRecord*>&
   for (const RunRecord* run : runs) {
     g.steps += static_cast<int>(run->steps.size());
     if (run->diverged) ++g.diverged_runs;
+    g.relocalizations += run->relocalizations;
+    g.constrained_steps += run->constrained_steps;
+    g.rejected_updates += run->rejected_updates;
     for (const auto& s : run->steps) {
       errors.push_back(s.error_m);
       if (s.peb_m) {
@@ -38,6 +42,7 @@ GroupSummary Group(const std::string& name, const std::vector<const RunRecord*>&
   if (!pebs.empty()) {
     g.peb_mean_m = std::accumulate(pebs.begin(), pebs.end(), 0.0) / static_cast<double>(pebs.size());
     g.peb_p50_m = eval::Percentile(pebs, 50.0);
+    g.peb_rms_m = std::sqrt(std::inner_product(pebs.begin(), pebs.end(), pebs.begin(), 0.0) / static_cast<double>(pebs.size()));
   }
   return g;
 }

@@ -87,7 +87,6 @@ class CirSynthesizer {
   int guard_samples_ = 0;
   double noise_psd_ = 0.0;
   core::Fft fft_;
-  std::vector<double> bin_frequency_hz_;  // frequency of each FFT bin
   std::vector<double> bin_spectrum_;      // P(f_k) / sqrt(T_s) of each bin
 };
 

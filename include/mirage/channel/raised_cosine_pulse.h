@@ -22,6 +22,13 @@ struct PulseOptions {
 /// Problems with the options, empty if valid.
 std::vector<std::string> Validate(const PulseOptions& options);
 
+/// The RC pulse's tails fall below 1e-6 of its peak within this many pulse durations; zero
+/// padding of this length keeps circular (FFT) convolutions from wrapping.
+inline constexpr double kPulseTailDurations = 32.0;
+
+/// kPulseTailDurations pulse durations in samples of period sample_period_s (rounded up).
+int PulseTailSamples(const PulseOptions& options, double sample_period_s);
+
 /// Unit-energy baseband RC pulse p(t) with spectrum P(f), both real and even.
 class RaisedCosinePulse {
  public:
@@ -47,6 +54,9 @@ class RaisedCosinePulse {
   [[nodiscard]] double effective_duration_s() const { return effective_duration_s_; }
   /// Range standard deviation at SINR = 1 from the CRLB, c / (sqrt(8) pi beta) (m), Eq. (3.28).
   [[nodiscard]] double range_sigma_at_unit_sinr_m() const;
+  /// The spectrum of the discrete unit-energy pulse p[n] = sqrt(T_s) p(n T_s) on the bins of a
+  /// length-fft_size DFT: P(f_k) / sqrt(T_s), real and even (bin k >= fft_size / 2 is negative).
+  [[nodiscard]] std::vector<double> SampledSpectrum(std::size_t fft_size, double sample_period_s) const;
 
  private:
   PulseOptions options_;

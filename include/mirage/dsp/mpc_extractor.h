@@ -63,7 +63,7 @@ class MpcExtractor {
 
  private:
   struct Component {
-    double offset = 0.0;  // delay in samples from the window start
+    double offset_samples = 0.0;  // delay from the window start (samples)
     Complex amplitude;
   };
   // The residual matched-filter output with its energies |y|^2 and per-block maxima, so that
@@ -75,7 +75,7 @@ class MpcExtractor {
   };
   // Peak search around sample index n in y, sub-sample parabola; returns the component.
   [[nodiscard]] Component Refine(const std::vector<Complex>& y, int n) const;
-  // y += sign * alpha * R((n - offset) T_s) over the component's support; updates the energies.
+  // y += sign * alpha * R((n - offset_samples) T_s) over the component's support; updates the energies.
   void AddScaled(Residual& residual, const Component& c, double sign) const;
   void UpdateBlocks(Residual& residual, int lo, int hi) const;
   // Re-estimates one component with everything else removed (the "readjust" step).

@@ -49,6 +49,9 @@ struct RunRecord {
   std::vector<StepRecord> steps;
   std::vector<PathRecord> paths;  ///< every visible path at every step
   bool diverged = false;
+  int relocalizations = 0;       ///< steps at which the tracker declared the track lost and restarted
+  int constrained_steps = 0;     ///< steps whose estimate the in-room constraint moved
+  int rejected_updates = 0;      ///< updates skipped because S was not positive definite
   double simulate_s = 0.0;       ///< time spent simulating CIRs (s)
   double estimate_s = 0.0;       ///< time spent in MPC extraction and tracking (s)
 };
@@ -64,7 +67,7 @@ struct MintExperimentResult {
 /// Called after each finished run with (finished, total); may be called from worker threads.
 using ProgressCallback = std::function<void(int, int)>;
 
-/// Runs the experiment.
+/// Runs the experiment. Rethrows the first exception of a worker (e.g. std::bad_alloc).
 MintExperimentResult RunMintExperiment(const MintExperimentConfig& config, const ProgressCallback& progress = {});
 
 }  // namespace mirage::pipeline

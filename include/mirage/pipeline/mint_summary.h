@@ -31,6 +31,10 @@ struct GroupSummary {
   int diverged_runs = 0;
   std::optional<double> peb_mean_m;  ///< empty when no step had a finite PEB
   std::optional<double> peb_p50_m;
+  std::optional<double> peb_rms_m;   ///< sqrt(mean PEB^2): the like-for-like companion of the RMSE
+  int relocalizations = 0;           ///< summed over the runs
+  int constrained_steps = 0;
+  int rejected_updates = 0;
   int peb_singular_steps = 0;        ///< steps without two independent directions
 };
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "mirage/estimation/gates/chi2_gate.h"
 #include "mirage/estimation/meas/va_range.h"
 #include "mirage/estimation/range_association.h"
 #include "mirage/geometry/feasible_region.h"
@@ -31,6 +32,9 @@ std::vector<std::string> Validate(const MintOptions& options) {
   for (const auto& p : estimation::Validate(options.motion)) problems.push_back("motion." + p);
   for (const auto& p : Validate(options.variance)) problems.push_back("variance." + p);
   for (const auto& p : Validate(options.relocalization)) problems.push_back("relocalization." + p);
+  if (options.relocalization.enabled && options.relocalization.max_order > options.max_order) {
+    problems.push_back("relocalization.max_order must be <= max_order (the tracker knows no higher-order VAs)");
+  }
   return problems;
 }
 
@@ -81,8 +85,8 @@ std::vector<MintTracker::Pairing> MintTracker::Associate(const Reference& refere
       const auto k = static_cast<std::size_t>(i);
       for (Eigen::Index j = 0; j < n_measured; ++j) {
         const double nu = anchor.ranges[static_cast<std::size_t>(j)].range_m - expected_m[k];
-        const bool outside = gate > 0.0 && nu * nu > gate * gate_variance_m2[k];
-        distance(i, j) = outside ? std::numeric_limits<double>::infinity() : std::abs(nu);
+        distance(i, j) = estimation::InsideChi2Gate(nu, gate_variance_m2[k], gate) ? std::abs(nu)
+                                                                                 : std::numeric_limits<double>::infinity();
       }
     }
     const std::vector<int> assignment = estimation::AssociateWithCutoff(distance, options_.cutoff_m);

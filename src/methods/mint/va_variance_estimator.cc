@@ -33,8 +33,8 @@ VaVarianceEstimator::VaVarianceEstimator(const VaVarianceOptions& options, doubl
 void VaVarianceEstimator::AddSample(int va_id, const Vec2& agent_m, double amplitude) {
   VaHistory& history = vas_[va_id];
   history.samples.push_back({agent_m, amplitude * amplitude});
-  // Samples beyond d_max of the newest one can never be in a window again (the window is the
-  // contiguous run of samples within d_max of the newest), so drop them.
+  // Design choice: the history is the contiguous run of samples within d_max of the newest one;
+  // older samples are dropped even though the agent might come back to them.
   const Vec2& newest = history.samples.back().agent_m;
   std::size_t keep_from = 0;
   for (std::size_t i = history.samples.size(); i-- > 0;) {
@@ -43,6 +43,10 @@ void VaVarianceEstimator::AddSample(int va_id, const Vec2& agent_m, double ampli
       break;
     }
   }
+  // A slow or standing agent collects many samples within d_max; the newest few times N_min
+  // describe the window as well and keep the cost per step bounded.
+  const std::size_t cap = static_cast<std::size_t>(std::max(4 * options_.min_samples, 64));
+  keep_from = std::max(keep_from, history.samples.size() > cap ? history.samples.size() - cap : std::size_t{0});
   history.samples.erase(history.samples.begin(), history.samples.begin() + static_cast<std::ptrdiff_t>(keep_from));
 }
 

@@ -53,9 +53,9 @@ struct MintOptions {
   /// spikes the fixed cut-off d_c lets through around weak reflections.
   double innovation_gate_chi2 = 9.0;
   /// Keep the estimate inside the room and out of obstacles (mirage's version of Sec. 4.4.3's
-  /// in-room check, as a segment-crossing test between consecutive estimates): a posterior that
-  /// crossed a wall is stopped before it, one inside an obstacle is pushed out. Only the mean
-  /// moves.
+  /// in-room check, as a segment-crossing test between consecutive estimates): a move from the
+  /// previous estimate that crosses a wall or enters an obstacle is stopped 1 cm before it. Only
+  /// the mean moves.
   bool constrain_to_room = true;
   /// Motion model.
   estimation::ConstantVelocityOptions motion;
