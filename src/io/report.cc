@@ -9,6 +9,7 @@
 
 #include "mirage/core/constants.h"
 #include "mirage/io/input_error.h"
+#include "mirage/pipeline/tracker_adapter.h"
 
 namespace mirage::io {
 namespace {
@@ -33,6 +34,20 @@ json GroupJson(const pipeline::GroupSummary& g) {
             {"peb_m", PebJson(g)}};
   j["rmse_over_mean_peb"] = g.peb_mean_m ? json(g.error.rmse / *g.peb_mean_m) : json(nullptr);
   j["rmse_over_rms_peb"] = g.peb_rms_m ? json(g.error.rmse / *g.peb_rms_m) : json(nullptr);
+  if (g.map) {
+    const auto& m = *g.map;
+    j["map"] = {{"ospa_m", {{"mean", m.ospa_mean_m}, {"p50", m.ospa_p50_m}}},
+                {"discovered_vas", m.discovered_mean},
+                {"scored_vas", m.estimated_mean},
+                {"true_vas", m.true_mean},
+                {"matched_vas", m.matched_mean},
+                {"false_vas", m.false_mean},
+                {"filtered_vas", m.filtered_mean},
+                {"matched_error_m", m.matched_error_mean_m ? json(*m.matched_error_mean_m) : json(nullptr)},
+                {"note", "means over the runs; scored: map VAs (anchors excluded) not filtered and associated at "
+                         "least once; true: VAs of order >= 1 visible at some step of the run; matched: OSPA "
+                         "pairs closer than the cut-off, per anchor"}};
+  }
   j["tracker_events"] = {{"relocalizations", g.relocalizations},
                          {"constrained_steps", g.constrained_steps},
                          {"rejected_updates", g.rejected_updates}};
@@ -101,9 +116,12 @@ json MakeJsonReport(const Scenario& scenario, const pipeline::MintExperimentResu
       {"diffuse_power_ratio_db", config.channel.diffuse.power_ratio_db},
       {"channel_max_order", config.channel_max_order},
       {"max_components", config.mpc.max_components},
-      {"cutoff_m", config.mint.cutoff_m},
-      {"variance_estimation", config.mint.variance.enabled},
-      {"tracker_max_order", config.mint.max_order},
+      {"measurement_model", config.measurement_model == pipeline::MeasurementModel::kCir ? "cir" : "ranges"},
+      {"cutoff_m", config.method == pipeline::Method::kSlam ? config.slam.cutoff_m : config.mint.cutoff_m},
+      {"variance_estimation", config.method == pipeline::Method::kSlam ? config.slam.variance.enabled
+                                                                      : config.mint.variance.enabled},
+      {"tracker_max_order", pipeline::KnownVaOrder(config)},
+      {"map_cutoff_m", config.map_cutoff_m},
       {"known_virtual_anchors", result.known_vas.size()},
   };
   return j;
@@ -123,6 +141,19 @@ std::string FormatResultTable(const Scenario& scenario, const pipeline::MintSumm
   };
   for (const auto& g : summary.trajectories) row(g);
   if (summary.trajectories.size() > 1) row(summary.overall);
+  if (summary.overall.map) {
+    out += fmt::format("{:<16} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9} {:>12}\n", "map (mean/run)", "ospa_m", "found",
+                       "scored", "true", "matched", "false", "matched_err_m");
+    const auto map_row = [&](const pipeline::GroupSummary& g) {
+      if (!g.map) return;
+      const auto& m = *g.map;
+      out += fmt::format("{:<16} {:>9.3f} {:>9.1f} {:>9.1f} {:>9.1f} {:>9.1f} {:>9.1f} {:>12}\n", g.name, m.ospa_mean_m,
+                         m.discovered_mean, m.estimated_mean, m.true_mean, m.matched_mean, m.false_mean,
+                         m.matched_error_mean_m ? fmt::format("{:.3f}", *m.matched_error_mean_m) : "-");
+    };
+    for (const auto& g : summary.trajectories) map_row(g);
+    if (summary.trajectories.size() > 1) map_row(summary.overall);
+  }
   out += "SINR (dB)        true p10/p50/p90        estimated p10/p50/p90   est-true p50\n";
   for (const auto& [key, t] : summary.true_sinr) {
     std::string est = "-", err = "-";
@@ -199,6 +230,27 @@ void WriteCsv(const std::string& dir, const Scenario& scenario, const pipeline::
     }
     out.flush();
     CheckWritten(out, dir + "/paths.csv");
+  }
+  if (config.method == pipeline::Method::kSlam) {
+    // The SLAM map at the end of every run, with the match to the true VAs.
+    auto out = OpenForWriting(dir + "/map.csv");
+    out << "trajectory,run,va_id,anchor_id,origin,order,x_m,y_m,cov_xx_m2,cov_xy_m2,cov_yy_m2,sigma_range_m,"
+           "associations,discovered_step,filtered\n";
+    for (const auto& run : result.runs) {
+      const std::string& name = config.trajectories[static_cast<std::size_t>(run.trajectory)].name;
+      for (const auto& va : run.map) {
+        const char* origin = va.origin == methods::slam::MapVaOrigin::kAnchor  ? "anchor"
+                             : va.origin == methods::slam::MapVaOrigin::kPrior ? "prior"
+                                                                                : "discovered";
+        out << fmt::format("{},{},{},{},{},{},{:.5f},{:.5f},{:.6e},{:.6e},{:.6e},{},{},{},{}\n", name, run.run, va.id,
+                           config.anchor_ids[static_cast<std::size_t>(va.anchor_index)], origin, va.order,
+                           va.position_m.x(), va.position_m.y(), va.covariance_m2(0, 0), va.covariance_m2(0, 1),
+                           va.covariance_m2(1, 1), va.sigma_m ? fmt::format("{:.5f}", *va.sigma_m) : "",
+                           va.associations, va.discovered_step, va.filtered ? 1 : 0);
+      }
+    }
+    out.flush();
+    CheckWritten(out, dir + "/map.csv");
   }
   {
     auto out = OpenForWriting(dir + "/virtual_anchors.csv");

@@ -192,6 +192,74 @@ methods::mint::MintOptions ReadMint(YamlMap m, std::size_t walls) {
   return o;
 }
 
+methods::slam::DiscoveryOptions ReadDiscovery(YamlMap m) {
+  methods::slam::DiscoveryOptions o;
+  o.enabled = m.Boolean("enabled", o.enabled);
+  o.group_gate_m = m.NumberInRange("group_gate_m", o.group_gate_m, 1e-9, kHuge, "m");
+  o.group_max_gap_steps = m.Integer("group_max_gap_steps", o.group_max_gap_steps, 0, 100000);
+  o.group_size = m.Integer("group_size", o.group_size, 3, 100000);
+  o.min_group_baseline_m = m.NumberInRange("min_group_baseline_m", o.min_group_baseline_m, 0.0, kHuge, "m");
+  o.max_fit_rms_m = m.NumberInRange("max_fit_rms_m", o.max_fit_rms_m, 1e-9, kHuge, "m");
+  o.rls_initial_sigma_m = m.NumberInRange("rls_initial_sigma_m", o.rls_initial_sigma_m, 1e-9, kHuge, "m");
+  o.rls_range_sigma_m = m.NumberInRange("rls_range_sigma_m", o.rls_range_sigma_m, 1e-9, kHuge, "m");
+  o.min_measurements = m.Integer("min_measurements", o.min_measurements, 1, 100000);
+  o.resolve_misses = m.Integer("resolve_misses", o.resolve_misses, 1, 100000);
+  o.min_turn_m = m.NumberInRange("min_turn_m", o.min_turn_m, 0.0, kHuge, "m");
+  o.merge_hypotheses_m = m.NumberInRange("merge_hypotheses_m", o.merge_hypotheses_m, 1e-9, kHuge, "m");
+  o.candidate_timeout_steps = m.Integer("candidate_timeout_steps", o.candidate_timeout_steps, 1, 1000000);
+  o.candidate_max_age_steps = m.Integer("candidate_max_age_steps", o.candidate_max_age_steps, 1, 1000000);
+  o.duplicate_radius_m = m.NumberInRange("duplicate_radius_m", o.duplicate_radius_m, 0.0, kHuge, "m");
+  m.RejectUnknownKeys();
+  Check(o, m);
+  return o;
+}
+
+methods::slam::SlamOptions ReadSlam(YamlMap m, std::size_t walls) {
+  methods::slam::SlamOptions o;
+  o.cutoff_m = m.NumberInRange("cutoff_m", o.cutoff_m, 1e-9, kHuge, "m");
+  o.range_sigma_m = m.NumberInRange("range_sigma_m", o.range_sigma_m, 1e-9, kHuge, "m");
+  o.initial_position_sigma_m = m.NumberInRange("initial_position_sigma_m", o.initial_position_sigma_m, 1e-9, kHuge, "m");
+  o.initial_velocity_sigma_mps =
+      m.NumberInRange("initial_velocity_sigma_mps", o.initial_velocity_sigma_mps, 1e-9, kHuge, "m/s");
+  o.prior_max_order = m.Integer("prior_max_order", o.prior_max_order, 0, geometry::kMaxVirtualAnchorOrder);
+  CheckVirtualAnchorCount(m, "prior_max_order", walls, o.prior_max_order);
+  o.prior_va_sigma_m = m.NumberInRange("prior_va_sigma_m", o.prior_va_sigma_m, 1e-9, kHuge, "m");
+  o.prior_visibility = m.Boolean("prior_visibility", o.prior_visibility);
+  o.reassociate = m.Boolean("reassociate", o.reassociate);
+  o.innovation_gate_chi2 = m.NumberInRange("innovation_gate_chi2", o.innovation_gate_chi2, 0.0, 1e6, "");
+  o.va_filter = m.Boolean("va_filter", o.va_filter);
+  o.va_filter_sigma_m = m.NumberInRange("va_filter_sigma_m", o.va_filter_sigma_m, 1e-9, kHuge, "m");
+  {
+    YamlMap motion = m.OptionalMap("motion");
+    o.motion.accel_sigma_mps2 = motion.NumberInRange("accel_sigma_mps2", o.motion.accel_sigma_mps2, 1e-9, kHuge, "m/s^2");
+    motion.RejectUnknownKeys();
+  }
+  o.variance = ReadVariance(m.OptionalMap("variance"));
+  o.discovery = ReadDiscovery(m.OptionalMap("discovery"));
+  m.RejectUnknownKeys();
+  Check(o, m);
+  return o;
+}
+
+void ReadMeasurements(YamlMap m, pipeline::MintExperimentConfig& config) {
+  const std::string model = m.String("model", std::string("cir"));
+  if (model == "cir") {
+    config.measurement_model = pipeline::MeasurementModel::kCir;
+  } else if (model == "ranges") {
+    config.measurement_model = pipeline::MeasurementModel::kRangeLevel;
+  } else {
+    m.Fail("model", "unknown measurement model '" + model + "' (available: cir, ranges)");
+  }
+  auto& o = config.range_level;
+  o.detection_probability = m.NumberInRange("detection_probability", o.detection_probability, 0.0, 1.0, "");
+  o.clutter_rate = m.NumberInRange("clutter_rate", o.clutter_rate, 0.0, 1000.0, "");
+  o.min_sinr_db = m.NumberInRange("min_sinr_db", o.min_sinr_db, -200.0, 200.0, "dB");
+  o.resolution_m = m.NumberInRange("resolution_m", o.resolution_m, 0.0, kHuge, "m");
+  o.max_range_sigma_m = m.NumberInRange("max_range_sigma_m", o.max_range_sigma_m, 1e-9, kHuge, "m");
+  m.RejectUnknownKeys();
+  Check(o, m);
+}
+
 geometry::FloorPlan ReadFloorPlan(YamlMap m, const std::map<std::string, double>& materials) {
   std::vector<geometry::Wall> walls;
   for (auto& w : m.MapList("walls", false)) {
@@ -277,7 +345,13 @@ Scenario LoadScenario(const std::string& path, const ScenarioOverrides& override
   auto& config = scenario.mint;
   config.name = root.String("name");
   scenario.method = root.String("method");
-  if (scenario.method != "mint") root.Fail("method", "unknown method '" + scenario.method + "' (available: mint)");
+  if (scenario.method == "mint") {
+    config.method = pipeline::Method::kMint;
+  } else if (scenario.method == "slam") {
+    config.method = pipeline::Method::kSlam;
+  } else {
+    root.Fail("method", "unknown method '" + scenario.method + "' (available: mint, slam)");
+  }
   config.seed = root.Unsigned("seed", config.seed);
   config.runs = root.Integer("runs", config.runs, 1, kMaxRuns);
   config.threads = root.Integer("threads", config.threads, 0, kMaxThreads);
@@ -353,6 +427,8 @@ Scenario LoadScenario(const std::string& path, const ScenarioOverrides& override
   ReadChannel(root.OptionalMap("channel"), config);
   config.mpc = ReadMpc(root.OptionalMap("mpc"));
   config.mint = ReadMint(root.OptionalMap("mint"), config.plan.walls().size());
+  config.slam = ReadSlam(root.OptionalMap("slam"), config.plan.walls().size());
+  ReadMeasurements(root.OptionalMap("measurements"), config);
   {
     YamlMap evaluation = root.OptionalMap("evaluation");
     YamlMap divergence = evaluation.OptionalMap("divergence");
@@ -360,6 +436,7 @@ Scenario LoadScenario(const std::string& path, const ScenarioOverrides& override
     config.divergence.last_fraction =
         divergence.NumberInRange("last_fraction", config.divergence.last_fraction, 1e-9, 1.0, "");
     divergence.RejectUnknownKeys();
+    config.map_cutoff_m = evaluation.NumberInRange("map_cutoff_m", config.map_cutoff_m, 1e-9, kHuge, "m");
     evaluation.RejectUnknownKeys();
   }
   root.RejectUnknownKeys();

@@ -8,6 +8,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <set>
 #include <string>
 #include <thread>
 
@@ -19,7 +20,7 @@
 #include "mirage/eval/error_stats.h"
 #include "mirage/eval/position_error_bound.h"
 #include "mirage/geometry/trajectory.h"
-#include "mirage/methods/mint/mint_tracker.h"
+#include "mirage/pipeline/tracker_adapter.h"
 
 namespace mirage::pipeline {
 namespace {
@@ -38,6 +39,7 @@ struct Shared {
   std::vector<int> known_to_channel;  // known VA id -> channel VA id, or -1
   std::unique_ptr<channel::CirSynthesizer> synthesizer;
   std::unique_ptr<dsp::MpcExtractor> extractor;
+  std::unique_ptr<channel::RangeLevelSimulator> range_level;
 };
 
 RunRecord RunOne(const Shared& shared, int trajectory, int run) {
@@ -52,6 +54,7 @@ RunRecord RunOne(const Shared& shared, int trajectory, int run) {
     noise_rng.push_back(run_rng.Substream("noise/" + std::to_string(a)));
   }
   core::Rng init_rng = run_rng.Substream("init");
+  core::Rng ranges_rng = run_rng.Substream("ranges");
 
   RunRecord record;
   record.trajectory = trajectory;
@@ -60,7 +63,7 @@ RunRecord RunOne(const Shared& shared, int trajectory, int run) {
   const auto samples = geometry::SampleTrajectory(spec.waypoints_m, spec.speed_mps, spec.dt_s, record.offset_m);
 
   const double sigma1_m = shared.synthesizer->pulse().range_sigma_at_unit_sinr_m();
-  methods::mint::MintTracker tracker(config.mint, shared.known_vas, config.known_plan, sigma1_m);
+  TrackerAdapter tracker(config, shared.known_vas, sigma1_m);
   // The thesis starts at the known start point with variance sigma_i^2 (Tab. 3.1); optionally
   // the start is drawn from that distribution instead.
   const double sigma_i = config.mint.initial_position_sigma_m;
@@ -72,6 +75,7 @@ RunRecord RunOne(const Shared& shared, int trajectory, int run) {
   std::vector<core::AnchorRanges> measurements(static_cast<std::size_t>(anchors));
   std::vector<eval::RangeInformation> information;
   std::map<int, std::size_t> path_index_by_channel_va;  // channel VA id -> index in record.paths (this step)
+  std::set<int> visible_channel_ids;                    // channel VAs seen at any step (map truth)
   record.steps.reserve(samples.size());
 
   for (const auto& sample : samples) {
@@ -86,17 +90,24 @@ RunRecord RunOne(const Shared& shared, int trajectory, int run) {
                                                        config.channel.pulse.carrier_hz);
       const double los_distance_m =
           std::max((sample.position_m - config.anchors_m[static_cast<std::size_t>(a)]).norm(), 0.01);
-      cirs.push_back(shared.synthesizer->Synthesize(paths, los_distance_m, diffuse_rng[static_cast<std::size_t>(a)],
-                                                    noise_rng[static_cast<std::size_t>(a)]));
-      for (const auto& truth : cirs.back().paths) {
+      std::vector<channel::PathTruth> truths;
+      if (shared.range_level) {
+        measurements[static_cast<std::size_t>(a)] = shared.range_level->Simulate(a, paths, los_distance_m, ranges_rng, &truths);
+      } else {
+        cirs.push_back(shared.synthesizer->Synthesize(paths, los_distance_m, diffuse_rng[static_cast<std::size_t>(a)],
+                                                      noise_rng[static_cast<std::size_t>(a)]));
+        truths = cirs.back().paths;
+      }
+      for (const auto& truth : truths) {
         information.push_back({shared.channel_vas[truth.va_id].position_m, truth.sinr});
         path_index_by_channel_va[truth.va_id] = record.paths.size();
+        visible_channel_ids.insert(truth.va_id);
         record.paths.push_back({step_index, a, truth.va_id, truth.order, truth.delay_s, truth.amplitude,
                                 core::PowerRatioToDb(truth.sinr), std::nullopt});
       }
     }
     const auto t_est = Clock::now();
-    for (int a = 0; a < anchors; ++a) {
+    for (int a = 0; a < anchors && !shared.range_level; ++a) {
       auto& m = measurements[static_cast<std::size_t>(a)];
       m.anchor_index = a;
       m.ranges.clear();
@@ -109,33 +120,37 @@ RunRecord RunOne(const Shared& shared, int trajectory, int run) {
     record.simulate_s += Seconds(t_est - t_sim);
     record.estimate_s += Seconds(t_end - t_est);
 
-    for (const auto& association : step.associations) {
-      if (!association.sinr) continue;
-      const int channel_id = shared.known_to_channel[static_cast<std::size_t>(association.va_id)];
+    for (const auto& [va_id, sinr] : step.sinr_estimates) {
+      if (va_id < 0 || va_id >= static_cast<int>(shared.known_to_channel.size())) continue;  // discovered VA
+      const int channel_id = shared.known_to_channel[static_cast<std::size_t>(va_id)];
       const auto it = path_index_by_channel_va.find(channel_id);
       if (it == path_index_by_channel_va.end()) continue;  // associated a VA the channel does not have now
       // SINR 0 ("zero or complex") is reported at -40 dB so that it stays a finite statistic.
-      record.paths[it->second].estimated_sinr_db = core::PowerRatioToDb(std::max(*association.sinr, 1e-4));
+      record.paths[it->second].estimated_sinr_db = core::PowerRatioToDb(std::max(sinr, 1e-4));
     }
 
     StepRecord s;
     s.t_s = sample.t_s;
     s.truth_m = sample.position_m;
     s.estimate_m = step.position_m;
-    s.covariance_m2 = step.position_covariance;
+    s.covariance_m2 = step.covariance_m2;
     s.error_m = (step.position_m - sample.position_m).norm();
     s.peb_m = eval::PositionErrorBound(sample.position_m, information, sigma1_m);
-    s.associations = static_cast<int>(step.associations.size());
+    s.associations = step.associations;
     s.relocalized = step.relocalized;
     if (step.relocalized) ++record.relocalizations;
     if (step.constrained) ++record.constrained_steps;
-    if (step.update.rejection == estimation::UpdateRejection::kNotPositiveDefinite) ++record.rejected_updates;
+    if (step.rejected_update) ++record.rejected_updates;
     record.steps.push_back(s);
   }
   std::vector<double> errors;
   errors.reserve(record.steps.size());
   for (const auto& s : record.steps) errors.push_back(s.error_m);
   record.diverged = eval::IsDiverged(errors, config.divergence);
+  if (config.method == Method::kSlam) {
+    record.map = tracker.Map();
+    record.map_score = EvaluateMap(record.map, shared.channel_vas, visible_channel_ids, config.map_cutoff_m);
+  }
   return record;
 }
 
@@ -146,7 +161,8 @@ MintExperimentResult RunMintExperiment(const MintExperimentConfig& config, const
   Shared shared;
   shared.config = &config;
   shared.channel_vas = geometry::VirtualAnchorSet::Generate(config.anchors_m, config.plan, config.channel_max_order);
-  shared.known_vas = geometry::VirtualAnchorSet::Generate(config.known_anchors_m, config.known_plan, config.mint.max_order);
+  shared.known_vas =
+      geometry::VirtualAnchorSet::Generate(config.known_anchors_m, config.known_plan, KnownVaOrder(config));
   std::map<VaKey, int> channel_by_key;
   for (const auto& va : shared.channel_vas.all()) channel_by_key[{va.anchor_index, va.walls}] = va.id;
   for (const auto& va : shared.known_vas.all()) {
@@ -157,6 +173,9 @@ MintExperimentResult RunMintExperiment(const MintExperimentConfig& config, const
   shared.extractor = std::make_unique<dsp::MpcExtractor>(config.mpc, shared.synthesizer->pulse(),
                                                          shared.synthesizer->sample_count(),
                                                          config.channel.sample_period_s);
+  if (config.measurement_model == MeasurementModel::kRangeLevel) {
+    shared.range_level = std::make_unique<channel::RangeLevelSimulator>(config.range_level, *shared.synthesizer);
+  }
 
   const int trajectories = static_cast<int>(config.trajectories.size());
   const int total = trajectories * config.runs;

@@ -39,6 +39,38 @@ GroupSummary Group(const std::string& name, const std::vector<const RunRecord*>&
     }
   }
   g.error = eval::ComputeErrorStats(errors);
+  std::vector<double> ospa;
+  MapSummary map;
+  double matched_error_sum_m = 0.0;
+  int matched_pairs = 0;
+  for (const RunRecord* run : runs) {
+    if (!run->map_score) continue;
+    const MapScore& m = *run->map_score;
+    ospa.push_back(m.ospa_m);
+    map.discovered_mean += m.discovered;
+    map.estimated_mean += m.estimated;
+    map.true_mean += m.true_vas;
+    map.matched_mean += m.matched;
+    map.false_mean += m.false_vas;
+    map.filtered_mean += m.filtered;
+    if (m.matched_mean_error_m) {
+      matched_error_sum_m += *m.matched_mean_error_m * m.matched;
+      matched_pairs += m.matched;
+    }
+  }
+  if (!ospa.empty()) {
+    const auto n = static_cast<double>(ospa.size());
+    map.ospa_mean_m = std::accumulate(ospa.begin(), ospa.end(), 0.0) / n;
+    map.ospa_p50_m = eval::Percentile(ospa, 50.0);
+    map.discovered_mean /= n;
+    map.estimated_mean /= n;
+    map.true_mean /= n;
+    map.matched_mean /= n;
+    map.false_mean /= n;
+    map.filtered_mean /= n;
+    if (matched_pairs > 0) map.matched_error_mean_m = matched_error_sum_m / matched_pairs;
+    g.map = map;
+  }
   if (!pebs.empty()) {
     g.peb_mean_m = std::accumulate(pebs.begin(), pebs.end(), 0.0) / static_cast<double>(pebs.size());
     g.peb_p50_m = eval::Percentile(pebs, 50.0);

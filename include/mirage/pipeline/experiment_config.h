@@ -8,11 +8,13 @@
 #include <vector>
 
 #include "mirage/channel/cir_synthesizer.h"
+#include "mirage/channel/range_level_simulator.h"
 #include "mirage/core/types.h"
 #include "mirage/dsp/mpc_extractor.h"
 #include "mirage/eval/error_stats.h"
 #include "mirage/geometry/floor_plan.h"
 #include "mirage/methods/mint/mint_tracker.h"
+#include "mirage/methods/slam/slam_tracker.h"
 
 namespace mirage::pipeline {
 
@@ -35,7 +37,19 @@ struct RunGrid {
 /// Offset (m) of run `run` on the grid.
 Vec2 RunOffset(const RunGrid& grid, int run);
 
-/// A complete simulated MINT experiment.
+/// The estimator a run uses.
+enum class Method {
+  kMint,  ///< MINT with a known floor plan (Lafer 2014 ch. 3)
+  kSlam,  ///< multipath SLAM (Leitinger et al.; Lafer 2014 ch. 4)
+};
+
+/// What the simulator produces for the estimator.
+enum class MeasurementModel {
+  kCir,         ///< sampled CIRs with diffuse multipath, then MPC extraction (the full path)
+  kRangeLevel,  ///< ranges drawn directly: CRLB noise, missed detections, Poisson clutter
+};
+
+/// A complete simulated experiment (MINT or SLAM).
 struct MintExperimentConfig {
   std::string name;                 ///< scenario name
   std::uint64_t seed = 1;           ///< master seed; run i of trajectory t uses Rng(seed, stream(t, i))
@@ -50,7 +64,13 @@ struct MintExperimentConfig {
   channel::ChannelOptions channel;
   int channel_max_order = 2;        ///< highest reflection order simulated, in [0, 6]
   dsp::MpcExtractorOptions mpc;
+  Method method = Method::kMint;
   methods::mint::MintOptions mint;
+  methods::slam::SlamOptions slam;
+  MeasurementModel measurement_model = MeasurementModel::kCir;
+  channel::RangeLevelOptions range_level;  ///< used with MeasurementModel::kRangeLevel
+  /// OSPA cut-off of the map error (m), > 0: 0.5 m (issue 4).
+  double map_cutoff_m = 0.5;
   eval::DivergenceRule divergence;
   /// Start the tracker at a draw from N(true start, sigma_i^2 I) instead of at the true start.
   /// The thesis starts at the known start point with variance sigma_i^2 (Tab. 3.1; digest [GAP]).

@@ -14,6 +14,7 @@
 #include "mirage/core/types.h"
 #include "mirage/geometry/virtual_anchor.h"
 #include "mirage/pipeline/experiment_config.h"
+#include "mirage/pipeline/map_evaluation.h"
 
 namespace mirage::pipeline {
 
@@ -52,6 +53,8 @@ struct RunRecord {
   int relocalizations = 0;       ///< steps at which the tracker declared the track lost and restarted
   int constrained_steps = 0;     ///< steps whose estimate the in-room constraint moved
   int rejected_updates = 0;      ///< updates skipped because S was not positive definite
+  std::vector<methods::slam::MapVa> map;  ///< SLAM: the map at the end of the run
+  std::optional<MapScore> map_score;      ///< SLAM: its error against the visible true VAs
   double simulate_s = 0.0;       ///< time spent simulating CIRs (s)
   double estimate_s = 0.0;       ///< time spent in MPC extraction and tracking (s)
 };

@@ -22,6 +22,20 @@ struct SinrStats {
   double p90_db = 0.0;
 };
 
+/// Map error of a group of SLAM runs: means over the runs of the per-run MapScore.
+struct MapSummary {
+  double ospa_mean_m = 0.0;
+  double ospa_p50_m = 0.0;
+  double discovered_mean = 0.0;
+  double estimated_mean = 0.0;
+  double true_mean = 0.0;
+  double matched_mean = 0.0;
+  double false_mean = 0.0;
+  double filtered_mean = 0.0;
+  /// Mean distance of matched VAs to their true positions, over all matched pairs of all runs.
+  std::optional<double> matched_error_mean_m;
+};
+
 /// Statistics of a group of runs.
 struct GroupSummary {
   std::string name;
@@ -36,6 +50,7 @@ struct GroupSummary {
   int constrained_steps = 0;
   int rejected_updates = 0;
   int peb_singular_steps = 0;        ///< steps without two independent directions
+  std::optional<MapSummary> map;     ///< SLAM runs only
 };
 
 /// The whole summary.

@@ -61,6 +61,12 @@ double VaVarianceEstimator::CurrentVariance(int va_id) const {
   return FallbackVariance(it->second);
 }
 
+std::optional<double> VaVarianceEstimator::LastEstimatedVariance(int va_id) const {
+  const auto it = vas_.find(va_id);
+  if (it == vas_.end() || it->second.variance_count == 0) return std::nullopt;
+  return it->second.last_variance;
+}
+
 std::optional<AmplitudeMoments> VaVarianceEstimator::Moments(int va_id, const Vec2& at_m) const {
   const auto it = vas_.find(va_id);
   if (it == vas_.end()) return std::nullopt;
@@ -107,6 +113,7 @@ VaVariance VaVarianceEstimator::Variance(int va_id, bool associated_now) {
   // Otherwise Rayleigh-like amplitudes: SINR 0 or complex, sigma_VA,max^2 (out's initial value).
   history.variance_sum += out.variance_m2;
   ++history.variance_count;
+  history.last_variance = out.variance_m2;
   return out;
 }
 

@@ -86,6 +86,9 @@ class VaVarianceEstimator {
   /// therefore expires instead of describing a place the agent has left.
   [[nodiscard]] std::optional<AmplitudeMoments> Moments(int va_id, const Vec2& at_m) const;
 
+  /// The variance of the VA's most recent moment-based estimate (m^2), or std::nullopt while it
+  /// has none (start-up: the VA runs on the default sigma_VA). The SLAM VA filter reads it.
+  [[nodiscard]] std::optional<double> LastEstimatedVariance(int va_id) const;
   /// Forgets everything (new run).
   void Reset() { vas_.clear(); }
 
@@ -98,6 +101,7 @@ class VaVarianceEstimator {
     std::deque<Sample> samples;
     double variance_sum = 0.0;
     int variance_count = 0;
+    double last_variance = 0.0;  // valid when variance_count > 0
   };
   [[nodiscard]] double FallbackVariance(const VaHistory& history) const;
 

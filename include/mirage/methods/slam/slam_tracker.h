@@ -1,0 +1,195 @@
+// SPDX-License-Identifier: MIT
+// Multipath SLAM (Leitinger, Meissner, Lafer, Witrisal; Lafer 2014 ch. 4): virtual anchors in
+// the EKF state next to the agent, corrected by every range associated to them, and new VAs
+// discovered from the ranges no VA explains.
+//
+// Per step: constant-velocity prediction (VAs static, Eq. 13-14); per-anchor cut-off assignment
+// of the measured ranges to the expected ranges of the map's VAs (Eq. 7-11), where prior VAs
+// from a known floor plan use ray-traced visibility and discovered VAs, which have none, are
+// candidates everywhere; online range variance per VA (Eq. 17-18) and the VA filter; one EKF
+// update with agent and VA columns (Eq. 16, current rows only); discovery with the rest.
+//
+// Choices where the paper is silent or inconsistent (digest slam_multipath_leitinger.md Sec. 8):
+// - Standard EKF-SLAM: the full joint covariance is kept and only the current ranges update it.
+//   The paper's stacking of all past ranges (Eq. 15-16) re-uses information at every step
+//   (digest Sec. 2.7.5) and is not offered.
+// - A new VA enters with the thesis's augmentation (Lafer Eq. 4.7-4.9): G_x = [I_2 0] (the
+//   digest's simplification of Eq. 4.20-4.22, the ranges treated as functions of the current
+//   agent position), so the cross-covariance is the agent-position rows of P, and
+//   P_new = P_pp + P_rls, the RLS covariance standing for G_z R G_z^T. The paper's zero
+//   cross-covariance would make the map overconfident.
+// - Prior VAs enter the state when first associated, with their prior covariance and no
+//   correlation: exactly what carrying them from the start would give, at a fraction of the cost
+//   (830 VAs per anchor up to order 2 in the seminar room, of which a few dozen are ever seen).
+// - VA filter (sigma_d > 6.23 cm excludes a VA from the association) only on a VA's own
+//   estimate: a VA on the default sigma (0.07 m > 6.23 cm) is exempt until its window is full,
+//   otherwise no new VA could ever be associated (digest Sec. 8 item 6). The physical anchors
+//   are never filtered: one bad window behind an obstacle would lose the LOS for good.
+#pragma once
+
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "mirage/core/measurements.h"
+#include "mirage/estimation/ekf_update.h"
+#include "mirage/estimation/motion/constant_velocity.h"
+#include "mirage/estimation/state.h"
+#include "mirage/geometry/floor_plan.h"
+#include "mirage/geometry/virtual_anchor.h"
+#include "mirage/methods/mint/va_variance_estimator.h"
+#include "mirage/methods/slam/va_discovery.h"
+
+namespace mirage::methods::slam {
+
+/// Parameters of the SLAM tracker.
+struct SlamOptions {
+  /// Cut-off distance d_c of the data association (m), > 0. 0.15 m (Lafer Tab. 3.1).
+  double cutoff_m = 0.15;
+  /// Range standard deviation when variance estimation is off (m), > 0. 0.07 m.
+  double range_sigma_m = 0.07;
+  /// Standard deviation of the initial position (m), > 0. 0.1 m (Lafer Tab. 3.1).
+  double initial_position_sigma_m = 0.1;
+  /// Standard deviation of the initial velocity (m/s), > 0; the filter starts at rest.
+  double initial_velocity_sigma_mps = 0.5;
+  /// Highest order of the VAs known at the start from the known floor plan, in [0, 6]: 0 = only
+  /// the physical anchors (the paper's SLAM), 2 or 3 = the paper's known-VA baseline.
+  int prior_max_order = 0;
+  /// Prior standard deviation of each known VA's position (m), > 0 [GAP: digest Sec. 3.3
+  /// suggests 5-10 cm]. The physical anchors are exact and not in the state.
+  double prior_va_sigma_m = 0.05;
+  /// Prior VAs (and the anchors' LOS) are associated only where the known floor plan makes them
+  /// visible (the baseline's ray-traced visibility regions). Off: the floor plan is not used.
+  bool prior_visibility = true;
+  /// Two-stage association as in MINT (mirage): the LOS ranges first, then all VAs at that
+  /// estimate.
+  bool reassociate = true;
+  /// Innovation gate inside the assignment (mirage; 0 = off), chi^2 with 1 degree of freedom;
+  /// the innovation variance includes the VA's covariance.
+  double innovation_gate_chi2 = 9.0;
+  /// The VA filter (Leitinger Sec. III-C): a VA whose estimated range std exceeds
+  /// va_filter_sigma_m takes no part in the association.
+  bool va_filter = true;
+  /// sigma_d,max (m), > 0: 6.23 cm, the CRLB at SINR 0 dB (Leitinger Sec. IV).
+  double va_filter_sigma_m = 0.0623;
+  /// Motion model of the agent.
+  estimation::ConstantVelocityOptions motion;
+  /// Online variance estimation per VA (Lafer Sec. 3.6 / Leitinger Sec. III-C).
+  mint::VaVarianceOptions variance;
+  /// Discovery of new VAs.
+  DiscoveryOptions discovery;
+};
+
+/// Problems with the options, empty if valid.
+std::vector<std::string> Validate(const SlamOptions& options);
+
+/// Where a map VA came from.
+enum class MapVaOrigin {
+  kAnchor,      ///< a physical anchor (fixed, not in the state)
+  kPrior,       ///< a VA of the known floor plan
+  kDiscovered,  ///< found by discovery
+};
+
+/// One VA of the map.
+struct MapVa {
+  int id = 0;                ///< prior VAs: their id in the known VA set; discovered: 1'000'000 + n
+  int anchor_index = 0;
+  MapVaOrigin origin = MapVaOrigin::kDiscovered;
+  int order = -1;            ///< reflection order for anchors and prior VAs, -1 if discovered
+  Vec2 position_m = Vec2::Zero();                              ///< current estimate
+  Eigen::Matrix2d covariance_m2 = Eigen::Matrix2d::Zero();     ///< marginal covariance
+  int associations = 0;      ///< steps at which a range was associated to it
+  int discovered_step = -1;  ///< step of promotion (discovered VAs)
+  bool filtered = false;     ///< excluded by the VA filter at the last step
+  std::optional<double> sigma_m;  ///< last estimated range std, if any
+};
+
+/// One association made at a step.
+struct SlamAssociation {
+  int anchor_index = 0;
+  int va_id = 0;
+  double measured_range_m = 0.0;
+  double variance_m2 = 0.0;
+  std::optional<double> sinr;
+};
+
+/// What one step produced.
+struct SlamStepResult {
+  Vec2 position_m = Vec2::Zero();
+  Vec2 velocity_mps = Vec2::Zero();
+  Eigen::Matrix2d position_covariance = Eigen::Matrix2d::Zero();
+  std::vector<SlamAssociation> associations;
+  estimation::UpdateResult update;
+  int discovered = 0;   ///< VAs promoted into the state at this step
+  int state_vas = 0;    ///< VAs in the state after the step
+};
+
+/// Id of the first discovered VA (prior VA ids are below it).
+inline constexpr int kFirstDiscoveredVaId = 1'000'000;
+
+/// The SLAM tracker for one agent. Not thread-safe; one instance per run.
+class SlamTracker {
+ public:
+  /// @param known_vas VAs of the known floor plan, at least the order-0 ones (the anchors).
+  /// @param plan      the known floor plan (visibility of the prior VAs; may be empty when
+  ///                  prior_visibility is off).
+  /// @param range_sigma_at_unit_sinr_m c / (sqrt(8) pi beta) of the pulse (m).
+  SlamTracker(const SlamOptions& options, const geometry::VirtualAnchorSet& known_vas, const geometry::FloorPlan& plan,
+              double range_sigma_at_unit_sinr_m);
+
+  /// Starts at p0_m at rest; the map holds the anchors and the prior VAs up to prior_max_order.
+  void Initialize(double t_s, const Vec2& p0_m);
+
+  /// Predicts to t_s and updates with the ranges of all anchors.
+  SlamStepResult Step(double t_s, std::span<const core::AnchorRanges> measurements);
+
+  /// The map with positions and covariances read from the state.
+  [[nodiscard]] std::vector<MapVa> Map() const;
+
+  [[nodiscard]] const estimation::State& state() const { return state_; }
+  [[nodiscard]] const VaDiscovery& discovery() const { return discovery_; }
+
+ private:
+  struct Pairing {
+    int anchor_index = 0;
+    std::size_t map_index = 0;
+    const core::RangeMeasurement* measurement = nullptr;
+    bool overlapped = false;
+  };
+  struct Reference {
+    Vec2 position_m = Vec2::Zero();
+    Eigen::Matrix2d covariance_m2 = Eigen::Matrix2d::Zero();
+  };
+  [[nodiscard]] Vec2 VaPosition(std::size_t map_index) const;
+  [[nodiscard]] bool InState(std::size_t map_index) const;
+  [[nodiscard]] bool Filtered(std::size_t map_index) const;
+  [[nodiscard]] double CurrentVariance(int va_id) const;
+  // Map entries of one anchor that may be associated at the reference position.
+  [[nodiscard]] std::vector<std::size_t> Candidates(int anchor_index, const Vec2& at_m, bool los_only) const;
+  [[nodiscard]] std::vector<Pairing> Associate(const Reference& reference,
+                                               std::span<const core::AnchorRanges> measurements, bool los_only,
+                                               double gate) const;
+  estimation::UpdateResult Update(estimation::State& state, const std::vector<Pairing>& pairings,
+                                  const std::vector<double>& variances_m2) const;
+  void AddToState(std::size_t map_index);
+
+  struct Entry {
+    MapVa va;
+    Vec2 prior_m = Vec2::Zero();
+  };
+
+  SlamOptions options_;
+  const geometry::VirtualAnchorSet* known_vas_;
+  const geometry::FloorPlan* plan_;
+  mint::VaVarianceEstimator variance_;
+  VaDiscovery discovery_;
+  estimation::State state_;
+  std::vector<Entry> map_;
+  int step_ = 0;
+  int next_discovered_id_ = kFirstDiscoveredVaId;
+};
+
+}  // namespace mirage::methods::slam

@@ -1,0 +1,156 @@
+// SPDX-License-Identifier: MIT
+// Discovery of new virtual anchors from the ranges no known VA explains (Leitinger et al.
+// Sec. III-D; Lafer 2014 Sec. 4.2, Fig. 4.3). Per anchor and step, the unassociated ranges go
+// through the paper's stages in this order:
+//   A. association to the existing candidate pairs (cut-off assignment on the predicted ranges
+//      of the pair's closer hypothesis) and  B. a linearised RLS update of each hypothesis the
+//      range supports (Lafer Eq. 4.11-4.14);
+//   C. promotion of a resolved candidate: once one mirror hypothesis has stopped explaining the
+//      ranges (the agent turned) and the survivor has enough measurements, it is returned to
+//      the tracker, which puts it into the state;
+//   D. the remaining ranges extend groups of similar ranges from consecutive steps; a group long
+//      enough, and walked over a long enough baseline, gives a new candidate pair by the
+//      range-Bancroft algorithm (two mirror solutions).
+// The digest (slam_multipath_leitinger.md Sec. 2.9, 3.3) lists what the paper leaves open; the
+// choices made here are the options below, each with its reason.
+#pragma once
+
+#include <array>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "mirage/core/measurements.h"
+#include "mirage/core/types.h"
+
+namespace mirage::methods::slam {
+
+/// Parameters of the VA discovery.
+struct DiscoveryOptions {
+  /// Discover new VAs at all.
+  bool enabled = true;
+  /// A range continues a group if it is within this distance of the group's last range (m), > 0.
+  /// v_max dT + 2 cm = 0.5 m/s * 0.1 s + 2 cm [GAP; digest Sec. 3.3].
+  double group_gate_m = 0.07;
+  /// A group that misses more than this many consecutive steps is dropped (>= 0) [GAP].
+  int group_max_gap_steps = 3;
+  /// Ranges in a group before the range-Bancroft initialisation (>= 3). The thesis uses 3
+  /// (Tab. 4.1); with 5 cm steps three points span 10 cm and the pair lands metres off, so 10
+  /// (about 0.5 m of walking) as the digest suggests (5-10).
+  int group_size = 10;
+  /// The group's agent positions must span at least this distance (m), >= 0.
+  double min_group_baseline_m = 0.3;
+  /// Largest RMS range residual of a Bancroft solution over its group (m), > 0: a group of ranges
+  /// that no single point explains (diffuse-multipath peaks chained by chance) is no VA.
+  double max_fit_rms_m = 0.03;
+  /// Initial RLS standard deviation of each hypothesis (m), > 0: P_0 = sigma^2 I, 10 m^2 in the
+  /// thesis (Tab. 4.1), i.e. about 3.16 m.
+  double rls_initial_sigma_m = 3.16;
+  /// Range standard deviation in the RLS (m), > 0: R_z = 0.04 m^2 in the thesis (Tab. 4.1).
+  double rls_range_sigma_m = 0.2;
+  /// Measurements (group plus candidate updates) a hypothesis needs before promotion (>= 1):
+  /// N_rls = 10 in the thesis (Tab. 4.1).
+  int min_measurements = 10;
+  /// A candidate is promoted only when its agent positions extend at least this far across their
+  /// principal direction (m), >= 0: ranges from a straight walk cannot tell a VA from its mirror
+  /// image about the path (Leitinger footnote 4), however well one hypothesis happens to fit.
+  double min_turn_m = 0.2;
+  /// Consecutive steps in which a hypothesis failed the cut-off while its sibling passed, after
+  /// which it is dismissed (>= 1) [GAP: the thesis promotes when the wrong hypothesis "is no
+  /// longer associated"].
+  int resolve_misses = 3;
+  /// Two hypotheses closer than this are the same point (m), > 0: the group already contained a
+  /// turn, there is nothing to resolve and the better-fitting one is kept.
+  double merge_hypotheses_m = 0.3;
+  /// A candidate without a supporting range for this many steps is dropped (>= 1) [SUG: time-out
+  /// of the digest Sec. 2.10].
+  int candidate_timeout_steps = 20;
+  /// A candidate still ambiguous after this many steps is dropped (>= 1): a straight walk never
+  /// resolves it, and an old pair's evidence comes from positions far behind.
+  int candidate_max_age_steps = 150;
+  /// A new candidate is not created if one of its hypotheses is within this distance of an
+  /// existing candidate hypothesis or of an active VA of the same anchor (m), >= 0 [SUG merge
+  /// radius, digest Sec. 2.10]: it would be the same feature found twice.
+  double duplicate_radius_m = 0.2;
+};
+
+/// Problems with the options, empty if valid.
+std::vector<std::string> Validate(const DiscoveryOptions& options);
+
+/// One range used by a candidate, with the agent position it was measured from.
+struct DiscoverySample {
+  Vec2 agent_m = Vec2::Zero();
+  double range_m = 0.0;
+  std::optional<double> amplitude;
+};
+
+/// One mirror hypothesis of a candidate, tracked by RLS.
+struct Hypothesis {
+  Vec2 position_m = Vec2::Zero();
+  Eigen::Matrix2d covariance_m2 = Eigen::Matrix2d::Identity();
+  bool alive = true;
+  int misses = 0;                  ///< consecutive steps failing the cut-off while the sibling passed
+  double squared_residual_m2 = 0;  ///< sum of squared pre-update residuals
+};
+
+/// A candidate pair (Leitinger Sec. III-D stage A/B).
+struct Candidate {
+  int anchor_index = 0;
+  std::array<Hypothesis, 2> hypotheses;
+  int created_step = 0;
+  int last_support_step = 0;
+  std::vector<DiscoverySample> samples;  ///< the group's ranges and every range associated since
+};
+
+/// A resolved candidate, ready to enter the state.
+struct DiscoveredVa {
+  int anchor_index = 0;
+  Vec2 position_m = Vec2::Zero();
+  Eigen::Matrix2d covariance_m2 = Eigen::Matrix2d::Identity();  ///< the RLS covariance
+  std::vector<DiscoverySample> samples;
+};
+
+/// Discovery state of one tracker (all anchors). Not thread-safe.
+class VaDiscovery {
+ public:
+  explicit VaDiscovery(const DiscoveryOptions& options);
+
+  /// Processes the unassociated ranges of one anchor at step `step`, measured from the agent's
+  /// current estimate agent_m. known_vas_m are the anchor's active VAs (for duplicate
+  /// suppression). Returns the candidates promoted at this step.
+  std::vector<DiscoveredVa> Process(int step, int anchor_index, const Vec2& agent_m,
+                                    std::span<const core::RangeMeasurement> unassociated,
+                                    std::span<const Vec2> known_vas_m, double cutoff_m);
+
+  [[nodiscard]] const std::vector<Candidate>& candidates() const { return candidates_; }
+  [[nodiscard]] int group_count() const { return static_cast<int>(groups_.size()); }
+
+  /// Forgets all groups and candidates.
+  void Reset();
+
+ private:
+  struct Group {
+    int anchor_index = 0;
+    int last_step = 0;
+    std::vector<DiscoverySample> samples;
+  };
+  // Stage A/B; returns the indices of the ranges it used.
+  std::vector<bool> UpdateCandidates(int step, int anchor_index, const Vec2& agent_m,
+                                     std::span<const core::RangeMeasurement> ranges, double cutoff_m);
+  // Stage C.
+  std::vector<DiscoveredVa> Promote(int step, int anchor_index);
+  // Stage D.
+  void UpdateGroups(int step, int anchor_index, const Vec2& agent_m, std::span<const core::RangeMeasurement> ranges,
+                    const std::vector<bool>& used, std::span<const Vec2> known_vas_m);
+  // One RLS step of a hypothesis (Lafer Eq. 4.11-4.14).
+  void RlsUpdate(Hypothesis& h, const Vec2& agent_m, double range_m) const;
+
+  DiscoveryOptions options_;
+  std::vector<Group> groups_;
+  std::vector<Candidate> candidates_;
+};
+
+}  // namespace mirage::methods::slam

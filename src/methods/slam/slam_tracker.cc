@@ -1,0 +1,328 @@
+// SPDX-License-Identifier: MIT
+#include "mirage/methods/slam/slam_tracker.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <unordered_set>
+
+#include "mirage/estimation/covariance_ops.h"
+#include "mirage/estimation/gates/chi2_gate.h"
+#include "mirage/estimation/meas/va_range.h"
+#include "mirage/estimation/range_association.h"
+#include "mirage/geometry/visibility.h"
+
+namespace mirage::methods::slam {
+
+using estimation::BlockKey;
+using estimation::BlockKind;
+
+std::vector<std::string> Validate(const SlamOptions& options) {
+  std::vector<std::string> problems;
+  const auto positive = [&](double v, const char* name, const char* unit) {
+    if (!(v > 0.0) || !std::isfinite(v)) problems.push_back(std::string(name) + " must be > 0 " + unit);
+  };
+  positive(options.cutoff_m, "cutoff_m", "m");
+  positive(options.range_sigma_m, "range_sigma_m", "m");
+  positive(options.initial_position_sigma_m, "initial_position_sigma_m", "m");
+  positive(options.initial_velocity_sigma_mps, "initial_velocity_sigma_mps", "m/s");
+  positive(options.prior_va_sigma_m, "prior_va_sigma_m", "m");
+  positive(options.va_filter_sigma_m, "va_filter_sigma_m", "m");
+  if (options.prior_max_order < 0 || options.prior_max_order > geometry::kMaxVirtualAnchorOrder) {
+    problems.push_back("prior_max_order must be in [0, " + std::to_string(geometry::kMaxVirtualAnchorOrder) + "]");
+  }
+  if (!(options.innovation_gate_chi2 >= 0.0) || !std::isfinite(options.innovation_gate_chi2)) {
+    problems.push_back("innovation_gate_chi2 must be >= 0");
+  }
+  for (const auto& p : estimation::Validate(options.motion)) problems.push_back("motion." + p);
+  for (const auto& p : mint::Validate(options.variance)) problems.push_back("variance." + p);
+  for (const auto& p : Validate(options.discovery)) problems.push_back("discovery." + p);
+  return problems;
+}
+
+SlamTracker::SlamTracker(const SlamOptions& options, const geometry::VirtualAnchorSet& known_vas,
+                         const geometry::FloorPlan& plan, double range_sigma_at_unit_sinr_m)
+    : options_(options),
+      known_vas_(&known_vas),
+      plan_(&plan),
+      variance_(options.variance, range_sigma_at_unit_sinr_m),
+      discovery_(options.discovery) {}
+
+void SlamTracker::Initialize(double t_s, const Vec2& p0_m) {
+  estimation::StateLayout layout;
+  layout.Append({BlockKind::kPosition, 0}, 2);
+  layout.Append({BlockKind::kVelocity, 0}, 2);
+  Eigen::Vector4d mean;
+  mean << p0_m, 0.0, 0.0;
+  const double sp2 = options_.initial_position_sigma_m * options_.initial_position_sigma_m;
+  const double sv2 = options_.initial_velocity_sigma_mps * options_.initial_velocity_sigma_mps;
+  const Eigen::Vector4d diag(sp2, sp2, sv2, sv2);
+  state_ = estimation::State(layout, mean, diag.asDiagonal().toDenseMatrix(), t_s);
+  variance_.Reset();
+  discovery_.Reset();
+  map_.clear();
+  step_ = 0;
+  next_discovered_id_ = kFirstDiscoveredVaId;
+  for (const auto& va : known_vas_->all()) {
+    if (va.order > options_.prior_max_order) continue;
+    Entry e;
+    e.va.id = va.id;
+    e.va.anchor_index = va.anchor_index;
+    e.va.origin = va.order == 0 ? MapVaOrigin::kAnchor : MapVaOrigin::kPrior;
+    e.va.order = va.order;
+    e.va.position_m = va.position_m;
+    if (va.order > 0) {
+      e.va.covariance_m2 = Eigen::Matrix2d::Identity() * options_.prior_va_sigma_m * options_.prior_va_sigma_m;
+    }
+    e.prior_m = va.position_m;
+    map_.push_back(e);
+  }
+}
+
+bool SlamTracker::InState(std::size_t map_index) const {
+  return state_.layout().Find({BlockKind::kVirtualAnchor, map_[map_index].va.id}).has_value();
+}
+
+Vec2 SlamTracker::VaPosition(std::size_t map_index) const {
+  if (InState(map_index)) return state_.Mean({BlockKind::kVirtualAnchor, map_[map_index].va.id});
+  return map_[map_index].prior_m;
+}
+
+double SlamTracker::CurrentVariance(int va_id) const {
+  if (!options_.variance.enabled) return options_.range_sigma_m * options_.range_sigma_m;
+  return variance_.CurrentVariance(va_id);
+}
+
+bool SlamTracker::Filtered(std::size_t map_index) const {
+  const MapVa& va = map_[map_index].va;
+  if (!options_.va_filter || !options_.variance.enabled || va.origin == MapVaOrigin::kAnchor) return false;
+  // Only the VA's own estimate counts: the default 0.07 m would filter every new VA.
+  const auto last = variance_.LastEstimatedVariance(va.id);
+  return last && *last > options_.va_filter_sigma_m * options_.va_filter_sigma_m;
+}
+
+std::vector<std::size_t> SlamTracker::Candidates(int anchor_index, const Vec2& at_m, bool los_only) const {
+  std::unordered_set<int> visible;
+  const bool use_visibility = options_.prior_visibility && !plan_->walls().empty();
+  if (use_visibility) {
+    const int max_order = los_only ? 0 : options_.prior_max_order;
+    for (const int id : geometry::VisibleVirtualAnchors(*known_vas_, anchor_index, *plan_, at_m, max_order)) {
+      visible.insert(id);
+    }
+  }
+  std::vector<std::size_t> out;
+  for (std::size_t i = 0; i < map_.size(); ++i) {
+    const MapVa& va = map_[i].va;
+    if (va.anchor_index != anchor_index) continue;
+    if (los_only && va.origin != MapVaOrigin::kAnchor) continue;
+    if (va.origin != MapVaOrigin::kDiscovered && use_visibility && visible.count(va.id) == 0) continue;
+    if (Filtered(i)) continue;
+    out.push_back(i);
+  }
+  return out;
+}
+
+std::vector<SlamTracker::Pairing> SlamTracker::Associate(const Reference& reference,
+                                                         std::span<const core::AnchorRanges> measurements,
+                                                         bool los_only, double gate) const {
+  std::vector<Pairing> pairings;
+  const Vec2& at_m = reference.position_m;
+  for (const auto& anchor : measurements) {
+    std::vector<std::size_t> candidates;
+    std::vector<double> expected_m;
+    std::vector<double> gate_variance_m2;
+    for (const std::size_t i : Candidates(anchor.anchor_index, at_m, los_only)) {
+      const auto prediction = estimation::PredictVaRange(at_m, VaPosition(i));
+      if (!prediction) continue;
+      candidates.push_back(i);
+      expected_m.push_back(prediction->range_m);
+      // Innovation variance J_p P_pp J_p^T + J_v P_vv J_v^T + 2 J_p P_pv J_v^T + R (Eq. 16 rows).
+      double variance_m2 = (prediction->J_range_p * reference.covariance_m2 * prediction->J_range_p.transpose())(0, 0);
+      if (InState(i)) {
+        const BlockKey key{BlockKind::kVirtualAnchor, map_[i].va.id};
+        const int va_offset = state_.layout().At(key).offset;
+        const int p_offset = state_.layout().At({BlockKind::kPosition, 0}).offset;
+        const Eigen::Matrix2d P_vv = state_.covariance().block<2, 2>(va_offset, va_offset);
+        const Eigen::Matrix2d P_pv = state_.covariance().block<2, 2>(p_offset, va_offset);
+        variance_m2 += (prediction->J_range_va * P_vv * prediction->J_range_va.transpose())(0, 0) +
+                       2.0 * (prediction->J_range_p * P_pv * prediction->J_range_va.transpose())(0, 0);
+      } else {
+        variance_m2 += (prediction->J_range_va * map_[i].va.covariance_m2 * prediction->J_range_va.transpose())(0, 0);
+      }
+      gate_variance_m2.push_back(variance_m2 + CurrentVariance(map_[i].va.id));
+    }
+    const auto n_expected = static_cast<Eigen::Index>(candidates.size());
+    const auto n_measured = static_cast<Eigen::Index>(anchor.ranges.size());
+    Eigen::MatrixXd distance(n_expected, n_measured);
+    for (Eigen::Index r = 0; r < n_expected; ++r) {
+      const auto k = static_cast<std::size_t>(r);
+      for (Eigen::Index j = 0; j < n_measured; ++j) {
+        const double nu = anchor.ranges[static_cast<std::size_t>(j)].range_m - expected_m[k];
+        distance(r, j) = estimation::InsideChi2Gate(nu, gate_variance_m2[k], gate)
+                             ? std::abs(nu)
+                             : std::numeric_limits<double>::infinity();
+      }
+    }
+    const std::vector<int> assignment = estimation::AssociateWithCutoff(distance, options_.cutoff_m);
+    for (std::size_t k = 0; k < candidates.size(); ++k) {
+      if (assignment[k] < 0) continue;
+      Pairing p;
+      p.anchor_index = anchor.anchor_index;
+      p.map_index = candidates[k];
+      p.measurement = &anchor.ranges[static_cast<std::size_t>(assignment[k])];
+      for (std::size_t o = 0; o < candidates.size(); ++o) {
+        if (o != k && std::abs(expected_m[o] - expected_m[k]) < options_.variance.overlap_distance_m) {
+          p.overlapped = true;
+        }
+      }
+      pairings.push_back(p);
+    }
+  }
+  return pairings;
+}
+
+void SlamTracker::AddToState(std::size_t map_index) {
+  // A prior VA is independent of everything until its first range: adding it now with its prior
+  // covariance and no correlation equals carrying it in the state from the start.
+  const Entry& e = map_[map_index];
+  const Eigen::MatrixXd cross = Eigen::MatrixXd::Zero(2, state_.dimension());
+  estimation::CovarianceOps::Augment(state_, {BlockKind::kVirtualAnchor, e.va.id}, e.prior_m, cross,
+                                     e.va.covariance_m2);
+}
+
+estimation::UpdateResult SlamTracker::Update(estimation::State& state, const std::vector<Pairing>& pairings,
+                                             const std::vector<double>& variances_m2) const {
+  const Vec2 prior_m = state.Mean({BlockKind::kPosition, 0});
+  const int position_offset = state.layout().At({BlockKind::kPosition, 0}).offset;
+  const auto m = static_cast<Eigen::Index>(pairings.size());
+  Eigen::MatrixXd H = Eigen::MatrixXd::Zero(m, state.dimension());  // Leitinger Eq. (16), current rows
+  Eigen::VectorXd innovation(m);
+  Eigen::MatrixXd R = Eigen::MatrixXd::Zero(m, m);
+  Eigen::Index rows = 0;
+  for (std::size_t k = 0; k < pairings.size(); ++k) {
+    const Pairing& p = pairings[k];
+    const BlockKey key{BlockKind::kVirtualAnchor, map_[p.map_index].va.id};
+    const auto block = state.layout().Find(key);
+    const Vec2 va_m = block ? Vec2(state.Mean(key)) : map_[p.map_index].prior_m;
+    const auto prediction = estimation::PredictVaRange(prior_m, va_m);
+    if (!prediction) continue;
+    H.block<1, 2>(rows, position_offset) = prediction->J_range_p;
+    if (block) H.block<1, 2>(rows, block->offset) = prediction->J_range_va;
+    innovation(rows) = p.measurement->range_m - prediction->range_m;
+    R(rows, rows) = variances_m2[k];
+    ++rows;
+  }
+  return estimation::EkfUpdate(state, H.topRows(rows), innovation.head(rows), R.topLeftCorner(rows, rows));
+}
+
+SlamStepResult SlamTracker::Step(double t_s, std::span<const core::AnchorRanges> measurements) {
+  estimation::PropagateConstantVelocity(state_, 0, t_s, options_.motion);
+  SlamStepResult result;
+  Reference reference{state_.Mean({BlockKind::kPosition, 0}), state_.Covariance({BlockKind::kPosition, 0})};
+
+  if (options_.reassociate) {
+    // Stage 1 (as in MINT): the anchors' LOS ranges alone give the reference for stage 2.
+    const auto los = Associate(reference, measurements, true, 0.0);
+    if (!los.empty()) {
+      std::vector<double> variances;
+      for (const auto& p : los) variances.push_back(CurrentVariance(map_[p.map_index].va.id));
+      estimation::State trial = state_;
+      if (Update(trial, los, variances).applied) {
+        reference = {trial.Mean({BlockKind::kPosition, 0}), trial.Covariance({BlockKind::kPosition, 0})};
+      }
+    }
+  }
+
+  const std::vector<Pairing> pairings = Associate(reference, measurements, false, options_.innovation_gate_chi2);
+
+  std::vector<double> variances;
+  for (const auto& p : pairings) {
+    const MapVa& va = map_[p.map_index].va;
+    if (va.origin == MapVaOrigin::kPrior && !InState(p.map_index)) AddToState(p.map_index);
+    SlamAssociation a;
+    a.anchor_index = p.anchor_index;
+    a.va_id = va.id;
+    a.measured_range_m = p.measurement->range_m;
+    if (options_.variance.enabled) {
+      const auto& amplitude = p.measurement->amplitude;
+      if (amplitude && !p.overlapped) variance_.AddSample(va.id, reference.position_m, *amplitude);
+      const mint::VaVariance v = variance_.Variance(va.id, !p.overlapped && amplitude.has_value());
+      a.variance_m2 = v.variance_m2;
+      a.sinr = v.sinr;
+    } else {
+      a.variance_m2 = options_.range_sigma_m * options_.range_sigma_m;
+    }
+    variances.push_back(a.variance_m2);
+    result.associations.push_back(a);
+    ++map_[p.map_index].va.associations;
+  }
+  result.update = Update(state_, pairings, variances);
+
+  // Discovery with the ranges nobody took, from the posterior agent position.
+  const Vec2 agent_m = state_.Mean({BlockKind::kPosition, 0});
+  for (const auto& anchor : measurements) {
+    std::vector<core::RangeMeasurement> rest;
+    for (const auto& range : anchor.ranges) {
+      const bool taken = std::any_of(pairings.begin(), pairings.end(),
+                                     [&](const Pairing& p) { return p.measurement == &range; });
+      if (!taken) rest.push_back(range);
+    }
+    std::vector<Vec2> active_m;
+    for (std::size_t i = 0; i < map_.size(); ++i) {
+      if (map_[i].va.anchor_index == anchor.anchor_index && !Filtered(i)) active_m.push_back(VaPosition(i));
+    }
+    for (auto& found : discovery_.Process(step_, anchor.anchor_index, agent_m, rest, active_m, options_.cutoff_m)) {
+      // Lafer Eq. 4.7-4.9 with G_x = [I_2 0]: the new VA is correlated with everything the agent
+      // position is, and P_new = P_pp + P_rls.
+      const int p_offset = state_.layout().At({BlockKind::kPosition, 0}).offset;
+      const Eigen::MatrixXd cross = state_.covariance().middleRows(p_offset, 2);
+      const Eigen::Matrix2d P_pp = state_.covariance().block<2, 2>(p_offset, p_offset);
+      Entry e;
+      e.va.id = next_discovered_id_++;
+      e.va.anchor_index = anchor.anchor_index;
+      e.va.origin = MapVaOrigin::kDiscovered;
+      e.va.discovered_step = step_;
+      e.prior_m = found.position_m;
+      estimation::CovarianceOps::Augment(state_, {BlockKind::kVirtualAnchor, e.va.id}, found.position_m, cross,
+                                         P_pp + found.covariance_m2);
+      // The candidate's amplitudes fill the variance window at once (digest Sec. 2.8, third
+      // option), so the VA filter judges a new VA by its own history from the start.
+      if (options_.variance.enabled) {
+        for (const auto& s : found.samples) {
+          if (s.amplitude) variance_.AddSample(e.va.id, s.agent_m, *s.amplitude);
+        }
+        if (!found.samples.empty() && found.samples.back().amplitude) variance_.Variance(e.va.id, true);
+      }
+      map_.push_back(e);
+      ++result.discovered;
+    }
+  }
+  ++step_;
+
+  result.position_m = state_.Mean({BlockKind::kPosition, 0});
+  result.velocity_mps = state_.Mean({BlockKind::kVelocity, 0});
+  result.position_covariance = state_.Covariance({BlockKind::kPosition, 0});
+  for (const auto& block : state_.layout().blocks()) {
+    if (block.key.kind == BlockKind::kVirtualAnchor) ++result.state_vas;
+  }
+  return result;
+}
+
+std::vector<MapVa> SlamTracker::Map() const {
+  std::vector<MapVa> out;
+  out.reserve(map_.size());
+  for (std::size_t i = 0; i < map_.size(); ++i) {
+    MapVa va = map_[i].va;
+    if (InState(i)) {
+      const BlockKey key{BlockKind::kVirtualAnchor, va.id};
+      va.position_m = state_.Mean(key);
+      va.covariance_m2 = state_.Covariance(key);
+    }
+    va.filtered = Filtered(i);
+    if (const auto v = variance_.LastEstimatedVariance(va.id)) va.sigma_m = std::sqrt(*v);
+    out.push_back(va);
+  }
+  return out;
+}
+
+}  // namespace mirage::methods::slam

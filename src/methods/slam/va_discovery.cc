@@ -1,0 +1,294 @@
+// SPDX-License-Identifier: MIT
+#include "mirage/methods/slam/va_discovery.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <Eigen/Eigenvalues>
+
+#include "mirage/estimation/init/range_bancroft.h"
+#include "mirage/estimation/range_association.h"
+
+namespace mirage::methods::slam {
+
+std::vector<std::string> Validate(const DiscoveryOptions& o) {
+  std::vector<std::string> problems;
+  const auto positive = [&](double v, const char* name) {
+    if (!(v > 0.0) || !std::isfinite(v)) problems.push_back(std::string(name) + " must be > 0 m");
+  };
+  const auto at_least = [&](int v, int min, const char* name) {
+    if (v < min) problems.push_back(std::string(name) + " must be >= " + std::to_string(min));
+  };
+  positive(o.group_gate_m, "group_gate_m");
+  at_least(o.group_max_gap_steps, 0, "group_max_gap_steps");
+  at_least(o.group_size, 3, "group_size");
+  if (!(o.min_group_baseline_m >= 0.0) || !std::isfinite(o.min_group_baseline_m)) {
+    problems.push_back("min_group_baseline_m must be >= 0 m");
+  }
+  positive(o.max_fit_rms_m, "max_fit_rms_m");
+  positive(o.rls_initial_sigma_m, "rls_initial_sigma_m");
+  positive(o.rls_range_sigma_m, "rls_range_sigma_m");
+  at_least(o.min_measurements, 1, "min_measurements");
+  at_least(o.resolve_misses, 1, "resolve_misses");
+  if (!(o.min_turn_m >= 0.0) || !std::isfinite(o.min_turn_m)) problems.push_back("min_turn_m must be >= 0 m");
+  positive(o.merge_hypotheses_m, "merge_hypotheses_m");
+  at_least(o.candidate_timeout_steps, 1, "candidate_timeout_steps");
+  at_least(o.candidate_max_age_steps, 1, "candidate_max_age_steps");
+  if (!(o.duplicate_radius_m >= 0.0) || !std::isfinite(o.duplicate_radius_m)) {
+    problems.push_back("duplicate_radius_m must be >= 0 m");
+  }
+  return problems;
+}
+
+VaDiscovery::VaDiscovery(const DiscoveryOptions& options) : options_(options) {}
+
+void VaDiscovery::Reset() {
+  groups_.clear();
+  candidates_.clear();
+}
+
+void VaDiscovery::RlsUpdate(Hypothesis& h, const Vec2& agent_m, double range_m) const {
+  // Lafer Eq. 4.11-4.14: row Jacobian h = (q - p)^T / |q - p| at the previous estimate, scalar
+  // gain, Joseph-form covariance.
+  const Vec2 d = h.position_m - agent_m;
+  const double predicted_m = d.norm();
+  if (predicted_m < 1e-6) return;
+  const Eigen::RowVector2d H = d.transpose() / predicted_m;
+  const double R = options_.rls_range_sigma_m * options_.rls_range_sigma_m;
+  const double S = (H * h.covariance_m2 * H.transpose())(0, 0) + R;
+  const Eigen::Vector2d K = h.covariance_m2 * H.transpose() / S;
+  h.position_m += K * (range_m - predicted_m);
+  const Eigen::Matrix2d A = Eigen::Matrix2d::Identity() - K * H;
+  h.covariance_m2 = A * h.covariance_m2 * A.transpose() + K * R * K.transpose();
+}
+
+std::vector<bool> VaDiscovery::UpdateCandidates(int step, int anchor_index, const Vec2& agent_m,
+                                                std::span<const core::RangeMeasurement> ranges, double cutoff_m) {
+  std::vector<bool> used(ranges.size(), false);
+  std::vector<std::size_t> mine;
+  for (std::size_t c = 0; c < candidates_.size(); ++c) {
+    if (candidates_[c].anchor_index == anchor_index) mine.push_back(c);
+  }
+  if (mine.empty() || ranges.empty()) return used;
+  // Stage A: one range per candidate, by the cut-off assignment on the distance to the closer of
+  // its live hypotheses (the thesis uses the DA of Sec. 3.4 against both members of the pair).
+  Eigen::MatrixXd distance(static_cast<Eigen::Index>(mine.size()), static_cast<Eigen::Index>(ranges.size()));
+  for (std::size_t i = 0; i < mine.size(); ++i) {
+    for (std::size_t j = 0; j < ranges.size(); ++j) {
+      double best = std::numeric_limits<double>::infinity();
+      for (const auto& h : candidates_[mine[i]].hypotheses) {
+        if (h.alive) best = std::min(best, std::abs(ranges[j].range_m - (h.position_m - agent_m).norm()));
+      }
+      distance(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = best;
+    }
+  }
+  const std::vector<int> assignment = estimation::AssociateWithCutoff(distance, cutoff_m);
+  for (std::size_t i = 0; i < mine.size(); ++i) {
+    if (assignment[i] < 0) continue;  // no range near either hypothesis: not visible now
+    Candidate& candidate = candidates_[mine[i]];
+    const auto& z = ranges[static_cast<std::size_t>(assignment[i])];
+    used[static_cast<std::size_t>(assignment[i])] = true;
+    candidate.last_support_step = step;
+    candidate.samples.push_back({agent_m, z.range_m, z.amplitude});
+    // Stage B: each live hypothesis the range supports is RLS-updated; one that fails the cut-off
+    // while its sibling passes counts a miss (the mirror image drifts apart after a turn).
+    std::array<bool, 2> supports{false, false};
+    for (std::size_t k = 0; k < 2; ++k) {
+      Hypothesis& h = candidate.hypotheses[k];
+      if (!h.alive) continue;
+      const double residual_m = z.range_m - (h.position_m - agent_m).norm();
+      supports[k] = std::abs(residual_m) < cutoff_m;
+      if (supports[k]) {
+        h.squared_residual_m2 += residual_m * residual_m;
+        RlsUpdate(h, agent_m, z.range_m);
+      }
+    }
+    for (std::size_t k = 0; k < 2; ++k) {
+      Hypothesis& h = candidate.hypotheses[k];
+      if (!h.alive) continue;
+      if (supports[k]) {
+        h.misses = 0;
+      } else if (supports[1 - k]) {
+        ++h.misses;
+      }
+    }
+  }
+  return used;
+}
+
+namespace {
+
+// Extent of the agent positions across their principal direction (m): 0 for a straight walk.
+double CrossExtent(const std::vector<DiscoverySample>& samples) {
+  if (samples.size() < 3) return 0.0;
+  Vec2 mean = Vec2::Zero();
+  for (const auto& s : samples) mean += s.agent_m;
+  mean /= static_cast<double>(samples.size());
+  Eigen::Matrix2d scatter = Eigen::Matrix2d::Zero();
+  for (const auto& s : samples) scatter += (s.agent_m - mean) * (s.agent_m - mean).transpose();
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(scatter);
+  const Vec2 normal = eig.eigenvectors().col(0);  // smallest eigenvalue: across the path
+  double lo = 0.0, hi = 0.0;
+  for (const auto& s : samples) {
+    const double u = (s.agent_m - mean).dot(normal);
+    lo = std::min(lo, u);
+    hi = std::max(hi, u);
+  }
+  return hi - lo;
+}
+
+}  // namespace
+
+std::vector<DiscoveredVa> VaDiscovery::Promote(int step, int anchor_index) {
+  std::vector<DiscoveredVa> promoted;
+  std::vector<Candidate> kept;
+  for (auto& candidate : candidates_) {
+    if (candidate.anchor_index != anchor_index) {
+      kept.push_back(std::move(candidate));
+      continue;
+    }
+    auto& h = candidate.hypotheses;
+    // Two live hypotheses that coincide are one point: keep the better-fitting one.
+    if (h[0].alive && h[1].alive && (h[0].position_m - h[1].position_m).norm() < options_.merge_hypotheses_m) {
+      h[h[0].squared_residual_m2 <= h[1].squared_residual_m2 ? 1 : 0].alive = false;
+    }
+    for (auto& hyp : h) {
+      if (hyp.alive && hyp.misses >= options_.resolve_misses) hyp.alive = false;
+    }
+    const int alive = (h[0].alive ? 1 : 0) + (h[1].alive ? 1 : 0);
+    const bool timed_out = step - candidate.last_support_step > options_.candidate_timeout_steps;
+    const bool too_old = step - candidate.created_step > options_.candidate_max_age_steps;
+    if (alive == 1 && static_cast<int>(candidate.samples.size()) >= options_.min_measurements && !timed_out &&
+        CrossExtent(candidate.samples) >= options_.min_turn_m) {
+      const Hypothesis& survivor = h[0].alive ? h[0] : h[1];
+      promoted.push_back({anchor_index, survivor.position_m, survivor.covariance_m2, std::move(candidate.samples)});
+      continue;
+    }
+    if (alive == 0 || timed_out || (too_old && alive == 2)) continue;  // dropped
+    kept.push_back(std::move(candidate));
+  }
+  candidates_ = std::move(kept);
+  return promoted;
+}
+
+void VaDiscovery::UpdateGroups(int step, int anchor_index, const Vec2& agent_m,
+                               std::span<const core::RangeMeasurement> ranges, const std::vector<bool>& used,
+                               std::span<const Vec2> known_vas_m) {
+  // Age out groups that missed too many steps.
+  std::erase_if(groups_, [&](const Group& g) {
+    return g.anchor_index == anchor_index && step - g.last_step > options_.group_max_gap_steps + 1;
+  });
+  std::vector<std::size_t> mine;
+  for (std::size_t g = 0; g < groups_.size(); ++g) {
+    if (groups_[g].anchor_index == anchor_index) mine.push_back(g);
+  }
+  std::vector<std::size_t> free;
+  for (std::size_t j = 0; j < ranges.size(); ++j) {
+    if (!used[j]) free.push_back(j);
+  }
+  // Each group takes at most one range per step and each range joins at most one group: the
+  // cut-off assignment on |z - last z of the group| with the group gate.
+  std::vector<int> assignment(mine.size(), -1);
+  if (!mine.empty() && !free.empty()) {
+    Eigen::MatrixXd distance(static_cast<Eigen::Index>(mine.size()), static_cast<Eigen::Index>(free.size()));
+    for (std::size_t i = 0; i < mine.size(); ++i) {
+      const Group& g = groups_[mine[i]];
+      for (std::size_t j = 0; j < free.size(); ++j) {
+        distance(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) =
+            g.last_step == step ? std::numeric_limits<double>::infinity()
+                                : std::abs(ranges[free[j]].range_m - g.samples.back().range_m);
+      }
+    }
+    assignment = estimation::AssociateWithCutoff(distance, options_.group_gate_m);
+  }
+  std::vector<bool> joined(free.size(), false);
+  std::vector<std::size_t> full;
+  for (std::size_t i = 0; i < mine.size(); ++i) {
+    if (assignment[i] < 0) continue;
+    const auto j = static_cast<std::size_t>(assignment[i]);
+    joined[j] = true;
+    Group& g = groups_[mine[i]];
+    g.samples.push_back({agent_m, ranges[free[j]].range_m, ranges[free[j]].amplitude});
+    g.last_step = step;
+    // A standing agent would grow the group without a baseline: keep the newest ranges only.
+    const auto cap = static_cast<std::size_t>(4 * options_.group_size);
+    if (g.samples.size() > cap) g.samples.erase(g.samples.begin());
+    if (static_cast<int>(g.samples.size()) >= options_.group_size) full.push_back(mine[i]);
+  }
+  for (std::size_t j = 0; j < free.size(); ++j) {
+    if (!joined[j]) {
+      groups_.push_back({anchor_index, step, {{agent_m, ranges[free[j]].range_m, ranges[free[j]].amplitude}}});
+    }
+  }
+
+  // Full groups with enough baseline become candidate pairs (Leitinger Sec. III-D stage D).
+  std::vector<bool> remove(groups_.size(), false);
+  for (const std::size_t g : full) {
+    const Group& group = groups_[g];
+    double baseline_m = 0.0;
+    for (const auto& s : group.samples) baseline_m = std::max(baseline_m, (s.agent_m - group.samples.front().agent_m).norm());
+    if (baseline_m < options_.min_group_baseline_m) continue;
+    std::vector<Vec2> positions;
+    std::vector<double> ranges_m;
+    for (const auto& s : group.samples) {
+      positions.push_back(s.agent_m);
+      ranges_m.push_back(s.range_m);
+    }
+    remove[g] = true;  // used up, whether or not it gives a candidate
+    const auto pair = estimation::RangeBancroft(positions, ranges_m);
+    if (!pair) continue;
+    Candidate candidate;
+    candidate.anchor_index = anchor_index;
+    candidate.created_step = step;
+    candidate.last_support_step = step;
+    candidate.samples = group.samples;
+    int fitting = 0;
+    bool duplicate = false;
+    for (std::size_t k = 0; k < 2; ++k) {
+      Hypothesis& h = candidate.hypotheses[k];
+      h.position_m = pair->positions_m[k];
+      h.covariance_m2 = Eigen::Matrix2d::Identity() * options_.rls_initial_sigma_m * options_.rls_initial_sigma_m;
+      double sum_m2 = 0.0;
+      for (const auto& s : group.samples) {
+        const double r = s.range_m - (h.position_m - s.agent_m).norm();
+        sum_m2 += r * r;
+      }
+      h.squared_residual_m2 = sum_m2;
+      const double rms_m = std::sqrt(sum_m2 / static_cast<double>(group.samples.size()));
+      h.alive = std::isfinite(rms_m) && rms_m <= options_.max_fit_rms_m;
+      // The group's ranges refine the hypothesis from its Bancroft start (Lafer Sec. 4.2.1).
+      if (h.alive) {
+        for (const auto& s : group.samples) RlsUpdate(h, s.agent_m, s.range_m);
+      }
+      // A hypothesis on top of a known VA or of another candidate means the group is that
+      // feature's ranges (e.g. while the VA filter excludes it): its mirror is no new VA either.
+      for (const auto& other : candidates_) {
+        if (other.anchor_index != anchor_index) continue;
+        for (const auto& oh : other.hypotheses) {
+          if (oh.alive && (oh.position_m - h.position_m).norm() < options_.duplicate_radius_m) duplicate = true;
+        }
+      }
+      for (const auto& va_m : known_vas_m) {
+        if ((va_m - h.position_m).norm() < options_.duplicate_radius_m) duplicate = true;
+      }
+      if (h.alive) ++fitting;
+    }
+    if (fitting > 0 && !duplicate) candidates_.push_back(std::move(candidate));
+  }
+  for (std::size_t g = groups_.size(); g-- > 0;) {
+    if (g < remove.size() && remove[g]) groups_.erase(groups_.begin() + static_cast<std::ptrdiff_t>(g));
+  }
+}
+
+std::vector<DiscoveredVa> VaDiscovery::Process(int step, int anchor_index, const Vec2& agent_m,
+                                               std::span<const core::RangeMeasurement> unassociated,
+                                               std::span<const Vec2> known_vas_m, double cutoff_m) {
+  if (!options_.enabled) return {};
+  const std::vector<bool> used = UpdateCandidates(step, anchor_index, agent_m, unassociated, cutoff_m);
+  auto promoted = Promote(step, anchor_index);
+  UpdateGroups(step, anchor_index, agent_m, unassociated, used, known_vas_m);
+  return promoted;
+}
+
+}  // namespace mirage::methods::slam
