@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: MIT
-"""Renders the picture of a `mirage run --plot FILE`: floor plan, anchors and VAs, true and
+"""Renders the picture of a `mirage run --plot FILE`: floor plan, anchors and VAs (for SLAM the
+true VAs and the estimated map of each trajectory's central run with 3-sigma ellipses), true and
 estimated trajectories with error ellipses (x20), and the error CDFs. Reads FILE.json written by
 the CLI. Usage: plot_run.py DATA.json OUT.png"""
 import json
@@ -71,9 +72,24 @@ def main(data_path, out_path):
         sel = vas[vas[:, 2] == order]
         m, s = markers.get(order, (".", 1))
         ax.scatter(sel[:, 0], sel[:, 1], marker=m, s=s, label=f"order-{order} VAs ({len(sel)})", alpha=0.7)
+    has_map = False
+    for t, traj in enumerate(data["trajectories"]):
+        color = COLORS[t % len(COLORS)]
+        for va in traj.get("map", []):
+            has_map = True
+            sxx, sxy, syy = va["cov"]
+            vals, vecs = np.linalg.eigh(np.array([[sxx, sxy], [sxy, syy]]))
+            vals = np.maximum(vals, 0.0)
+            angle = np.degrees(np.arctan2(vecs[1, 1], vecs[0, 1]))
+            ax.add_patch(Ellipse((va["x"], va["y"]), 2 * 3 * np.sqrt(vals[1]), 2 * 3 * np.sqrt(vals[0]), angle=angle,
+                                 fill=False, color=color, lw=0.6))
+            marker = "x" if va["discovered"] else "+"
+            ax.plot(va["x"], va["y"], marker, color=color, ms=6, alpha=0.4 if va["filtered"] else 1.0)
+        if traj.get("map"):
+            ax.plot([], [], "x", color=color, label=f"{traj['name']}: discovered VAs (x), prior VAs (+), 3-sigma")
     ax.set_aspect("equal")
     ax.set_xlabel("x (m)")
-    ax.set_title("floor plan and virtual anchors")
+    ax.set_title("floor plan, true VAs and the SLAM map (central run)" if has_map else "floor plan and virtual anchors")
     ax.legend(loc="upper right", fontsize=7)
 
     ax = axes[2]

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // The mirage command-line tool.
 //   mirage run SCENARIO.yaml [--runs N] [--seed S] [--threads T] [--json FILE] [--csv DIR] [--plot FILE]
+//   mirage simulate SCENARIO.yaml --out DIR [--seed S] [--trajectory NAME] [--run R]
 #include <unistd.h>
 
 #include <cstdio>
@@ -16,10 +17,13 @@
 
 #include "mirage/io/input_error.h"
 #include "mirage/io/plot.h"
+#include "mirage/io/recorded_data.h"
+#include "mirage/io/recorded_scenario.h"
 #include "mirage/io/report.h"
 #include "mirage/io/scenario.h"
 #include "mirage/pipeline/mint_experiment.h"
 #include "mirage/pipeline/mint_summary.h"
+#include "mirage/pipeline/run_simulator.h"
 
 namespace {
 
@@ -31,6 +35,15 @@ struct RunArgs {
   std::string json;
   std::string csv;
   std::string plot;
+  bool quiet = false;
+};
+
+struct SimulateArgs {
+  std::string scenario;
+  std::string out;
+  std::optional<std::uint64_t> seed;
+  std::string trajectory;
+  int run = 0;
   bool quiet = false;
 };
 
@@ -65,6 +78,50 @@ int Run(const RunArgs& args) {
   return 0;
 }
 
+// Writes one simulated run as recorded data (anchors.csv, ranges.csv, truth.csv) plus a
+// scenario.yaml that runs it, so that `mirage run DIR/scenario.yaml` replays exactly the ranges
+// the Monte-Carlo driver's tracker sees in that run.
+int Simulate(const SimulateArgs& args) {
+  mirage::io::ScenarioOverrides overrides;
+  overrides.seed = args.seed;
+  const auto scenario = mirage::io::LoadScenario(args.scenario, overrides);
+  const auto& config = scenario.mint;
+  if (config.measurement_model == mirage::pipeline::MeasurementModel::kRecorded) {
+    throw mirage::io::InputError(args.scenario + ": measurements.model is recorded; there is nothing to simulate");
+  }
+  int trajectory = 0;
+  if (!args.trajectory.empty()) {
+    trajectory = -1;
+    std::string names;
+    for (std::size_t t = 0; t < config.trajectories.size(); ++t) {
+      if (config.trajectories[t].name == args.trajectory) trajectory = static_cast<int>(t);
+      names += (names.empty() ? "" : ", ") + config.trajectories[t].name;
+    }
+    if (trajectory < 0) {
+      throw mirage::io::InputError(fmt::format("--trajectory: no trajectory '{}' in {} (available: {})",
+                                               args.trajectory, args.scenario, names));
+    }
+  }
+  if (args.run < 0 || args.run >= config.runs) {
+    throw mirage::io::InputError(
+        fmt::format("--run: {} is out of range, expected [0, {}] (the scenario's runs)", args.run, config.runs - 1));
+  }
+  const auto recording = mirage::pipeline::SimulateRecording(config, trajectory, args.run);
+  mirage::io::WriteRecording(args.out, recording);
+  mirage::io::WriteRecordedScenario(args.scenario, args.out, config.name + " (recorded)");
+  if (!args.quiet) {
+    std::size_t rows = 0;
+    for (const auto& step : recording.steps) {
+      for (const auto& anchor : step.anchors) rows += anchor.ranges.size();
+    }
+    std::cout << fmt::format("mirage simulate: {} trajectory '{}' run {} (seed {}): {} steps, {} ranges -> {}/"
+                             "{{anchors,ranges,truth}}.csv and scenario.yaml\n",
+                             config.name, config.trajectories[static_cast<std::size_t>(trajectory)].name, args.run,
+                             config.seed, recording.steps.size(), rows, args.out);
+  }
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -81,6 +138,15 @@ int main(int argc, char** argv) {
   run->add_option("--plot", args.plot, "write a picture (PNG, PDF or SVG) of the run");
   run->add_flag("--quiet", args.quiet, "print nothing but errors");
 
+  SimulateArgs sim;
+  auto* simulate = app.add_subcommand("simulate", "simulate one run and write it as recorded data (CSV) with a scenario that runs it");
+  simulate->add_option("scenario", sim.scenario, "scenario file (YAML)")->required();
+  simulate->add_option("--out", sim.out, "output directory")->required();
+  simulate->add_option("--seed", sim.seed, "master seed (overrides the scenario)");
+  simulate->add_option("--trajectory", sim.trajectory, "trajectory name (default: the first)");
+  simulate->add_option("--run", sim.run, "Monte-Carlo run index (start offset and random streams), default 0");
+  simulate->add_flag("--quiet", sim.quiet, "print nothing but errors");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -88,6 +154,7 @@ int main(int argc, char** argv) {
   }
   try {
     if (run->parsed()) return Run(args);
+    if (simulate->parsed()) return Simulate(sim);
   } catch (const mirage::io::InputError& e) {
     std::cerr << "mirage: error: " << e.what() << "\n";
     return 2;

@@ -53,7 +53,9 @@ json PlotData(const Scenario& scenario, const pipeline::MintExperimentResult& re
     anchors.push_back({config.anchors_m[a].x(), config.anchors_m[a].y(), config.anchor_ids[a]});
   }
   json vas = json::array();
-  for (const auto& va : result.known_vas.all()) {
+  // SLAM: the true VAs of the simulated room (what the map should find); MINT: the known ones.
+  const bool slam = config.method == pipeline::Method::kSlam;
+  for (const auto& va : (slam ? result.channel_vas : result.known_vas).all()) {
     if (va.order > 0) vas.push_back({va.position_m.x(), va.position_m.y(), va.order, va.anchor_index});
   }
   json trajectories = json::array();
@@ -62,6 +64,7 @@ json PlotData(const Scenario& scenario, const pipeline::MintExperimentResult& re
     json errors = json::array();
     json truth = json::array();
     json ellipses = json::array();
+    json map = json::array();
     // The truth and ellipses of the run closest to the grid centre among the runs present.
     int central = -1;
     double central_offset_m = 0.0;
@@ -78,9 +81,9 @@ json PlotData(const Scenario& scenario, const pipeline::MintExperimentResult& re
       for (std::size_t k = 0; k < run.steps.size(); ++k) {
         const auto& s = run.steps[k];
         est.push_back({s.estimate_m.x(), s.estimate_m.y()});
-        errors.push_back(s.error_m);
+        if (s.error_m) errors.push_back(*s.error_m);
         if (run.run == central) {
-          truth.push_back({s.truth_m.x(), s.truth_m.y()});
+          if (s.truth_m) truth.push_back({s.truth_m->x(), s.truth_m->y()});
           if (k % 20 == 0) {
             ellipses.push_back({s.estimate_m.x(), s.estimate_m.y(), s.covariance_m2(0, 0), s.covariance_m2(0, 1),
                                 s.covariance_m2(1, 1)});
@@ -88,13 +91,26 @@ json PlotData(const Scenario& scenario, const pipeline::MintExperimentResult& re
         }
       }
       runs.push_back({{"run", run.run}, {"diverged", run.diverged}, {"estimate", est}});
+      if (run.run == central && config.method == pipeline::Method::kSlam) {
+        // The SLAM map of the central run: estimated VAs with covariances (anchors excluded).
+        for (const auto& va : run.map) {
+          if (va.origin == methods::slam::MapVaOrigin::kAnchor) continue;
+          map.push_back({{"x", va.position_m.x()},
+                         {"y", va.position_m.y()},
+                         {"cov", {va.covariance_m2(0, 0), va.covariance_m2(0, 1), va.covariance_m2(1, 1)}},
+                         {"anchor", va.anchor_index},
+                         {"discovered", va.origin == methods::slam::MapVaOrigin::kDiscovered},
+                         {"filtered", va.filtered}});
+        }
+      }
     }
     trajectories.push_back({{"name", config.trajectories[t].name},
                             {"truth", truth},
                             {"central_run", central},
                             {"runs", runs},
                             {"errors", errors},
-                            {"ellipses", ellipses}});
+                            {"ellipses", ellipses},
+                            {"map", map}});
   }
   return {{"title", config.name},
           {"walls", walls},

@@ -29,8 +29,9 @@ json GroupJson(const pipeline::GroupSummary& g) {
   json j = {{"name", g.name},
             {"runs", g.runs},
             {"steps", g.steps},
-            {"position_error_m", ErrorJson(g.error)},
-            {"diverged_runs", g.diverged_runs},
+            // Recorded data without truth: no error block (null), as the divergence is unknown too.
+            {"position_error_m", g.has_truth ? ErrorJson(g.error) : json(nullptr)},
+            {"diverged_runs", g.has_truth ? json(g.diverged_runs) : json(nullptr)},
             {"peb_m", PebJson(g)}};
   j["rmse_over_mean_peb"] = g.peb_mean_m ? json(g.error.rmse / *g.peb_mean_m) : json(nullptr);
   j["rmse_over_rms_peb"] = g.peb_rms_m ? json(g.error.rmse / *g.peb_rms_m) : json(nullptr);
@@ -52,6 +53,15 @@ json GroupJson(const pipeline::GroupSummary& g) {
                          {"constrained_steps", g.constrained_steps},
                          {"rejected_updates", g.rejected_updates}};
   return j;
+}
+
+const char* MeasurementModelName(pipeline::MeasurementModel model) {
+  switch (model) {
+    case pipeline::MeasurementModel::kCir: return "cir";
+    case pipeline::MeasurementModel::kRangeLevel: return "ranges";
+    case pipeline::MeasurementModel::kRecorded: return "recorded";
+  }
+  return "?";
 }
 
 json SinrJson(const std::map<std::string, pipeline::SinrStats>& stats) {
@@ -103,6 +113,13 @@ json MakeJsonReport(const Scenario& scenario, const pipeline::MintExperimentResu
                   {"note", "true: every visible specular path at every step (Eq. 3.25 with the simulated DM and "
                            "noise); estimated: the tracker's online moment estimate (Eq. 3.26) when it made one; "
                            "an estimate of SINR 0 is counted as -40 dB"}};
+  if (scenario.recording_files) {
+    const auto& f = *scenario.recording_files;
+    j["recorded_data"] = {{"anchors", f.anchors},
+                          {"ranges", f.ranges},
+                          {"truth", f.truth ? json(*f.truth) : json(nullptr)},
+                          {"steps", config.recording->steps.size()}};
+  }
   json trajectories = json::array();
   for (const auto& g : summary.trajectories) trajectories.push_back(GroupJson(g));
   j["trajectories"] = trajectories;
@@ -116,7 +133,7 @@ json MakeJsonReport(const Scenario& scenario, const pipeline::MintExperimentResu
       {"diffuse_power_ratio_db", config.channel.diffuse.power_ratio_db},
       {"channel_max_order", config.channel_max_order},
       {"max_components", config.mpc.max_components},
-      {"measurement_model", config.measurement_model == pipeline::MeasurementModel::kCir ? "cir" : "ranges"},
+      {"measurement_model", MeasurementModelName(config.measurement_model)},
       {"cutoff_m", config.method == pipeline::Method::kSlam ? config.slam.cutoff_m : config.mint.cutoff_m},
       {"variance_estimation", config.method == pipeline::Method::kSlam ? config.slam.variance.enabled
                                                                       : config.mint.variance.enabled},
@@ -133,6 +150,11 @@ std::string FormatResultTable(const Scenario& scenario, const pipeline::MintSumm
   out += fmt::format("{:<16} {:>5} {:>6} {:>8} {:>8} {:>8} {:>8} {:>8} {:>8} {:>9} {:>9} {:>9}\n", "trajectory", "runs",
                      "steps", "rmse_m", "mean_m", "p50_m", "p90_m", "p95_m", "max_m", "diverged", "peb_m", "rmse/peb");
   const auto row = [&](const pipeline::GroupSummary& g) {
+    if (!g.has_truth) {
+      out += fmt::format("{:<16} {:>5} {:>6} {:>8} {:>8} {:>8} {:>8} {:>8} {:>8} {:>9} {:>9} {:>9}\n", g.name, g.runs,
+                         g.steps, "-", "-", "-", "-", "-", "-", "-", "-", "-");
+      return;
+    }
     const std::string peb = g.peb_mean_m ? fmt::format("{:.4f}", *g.peb_mean_m) : "-";
     const std::string ratio = g.peb_mean_m ? fmt::format("{:.1f}", g.error.rmse / *g.peb_mean_m) : "-";
     out += fmt::format("{:<16} {:>5} {:>6} {:>8.4f} {:>8.4f} {:>8.4f} {:>8.4f} {:>8.4f} {:>8.4f} {:>9} {:>9} {:>9}\n",
@@ -141,6 +163,11 @@ std::string FormatResultTable(const Scenario& scenario, const pipeline::MintSumm
   };
   for (const auto& g : summary.trajectories) row(g);
   if (summary.trajectories.size() > 1) row(summary.overall);
+  if (scenario.recording_files) {
+    out += fmt::format("recorded data: {} ({} steps){}\n", scenario.recording_files->ranges,
+                       scenario.mint.recording->steps.size(),
+                       scenario.recording_files->truth ? "" : "; no truth file, so no position error");
+  }
   if (summary.overall.map) {
     out += fmt::format("{:<16} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9} {:>12}\n", "map (mean/run)", "ospa_m", "found",
                        "scored", "true", "matched", "false", "matched_err_m");
@@ -189,8 +216,13 @@ void WriteCsv(const std::string& dir, const Scenario& scenario, const pipeline::
       const std::string& name = config.trajectories[static_cast<std::size_t>(run.trajectory)].name;
       for (std::size_t k = 0; k < run.steps.size(); ++k) {
         const auto& s = run.steps[k];
-        out << fmt::format("{},{},{},{:.3f},{:.5f},{:.5f},{:.5f},{:.5f},{:.5f},{:.5f},{:.5f},{},{},{}\n", name, run.run, k,
-                           s.t_s, s.truth_m.x(), s.truth_m.y(), s.estimate_m.x(), s.estimate_m.y(), s.error_m,
+        const auto optional_number = [](const std::optional<double>& v) {
+          return v ? fmt::format("{:.5f}", *v) : std::string();
+        };
+        out << fmt::format("{},{},{},{:.3f},{},{},{:.5f},{:.5f},{},{:.5f},{:.5f},{},{},{}\n", name, run.run, k, s.t_s,
+                           optional_number(s.truth_m ? std::optional(s.truth_m->x()) : std::nullopt),
+                           optional_number(s.truth_m ? std::optional(s.truth_m->y()) : std::nullopt),
+                           s.estimate_m.x(), s.estimate_m.y(), optional_number(s.error_m),
                            std::sqrt(s.covariance_m2(0, 0)), std::sqrt(s.covariance_m2(1, 1)),
                            s.peb_m ? fmt::format("{:.5f}", *s.peb_m) : "", s.associations, s.relocalized ? 1 : 0);
       }
@@ -202,12 +234,13 @@ void WriteCsv(const std::string& dir, const Scenario& scenario, const pipeline::
     auto out = OpenForWriting(dir + "/runs.csv");
     out << "trajectory,run,offset_x_m,offset_y_m,steps,rmse_m,p90_m,diverged\n";
     for (const auto& run : result.runs) {
-      std::vector<double> errors;
-      for (const auto& s : run.steps) errors.push_back(s.error_m);
+      const auto errors = pipeline::StepErrors(run.steps);
       const auto e = eval::ComputeErrorStats(errors);
-      out << fmt::format("{},{},{:.4f},{:.4f},{},{:.5f},{:.5f},{}\n",
+      const bool known = result.has_truth;
+      out << fmt::format("{},{},{:.4f},{:.4f},{},{},{},{}\n",
                          config.trajectories[static_cast<std::size_t>(run.trajectory)].name, run.run, run.offset_m.x(),
-                         run.offset_m.y(), run.steps.size(), e.rmse, e.p90, run.diverged ? 1 : 0);
+                         run.offset_m.y(), run.steps.size(), known ? fmt::format("{:.5f}", e.rmse) : "",
+                         known ? fmt::format("{:.5f}", e.p90) : "", known ? (run.diverged ? "1" : "0") : "");
     }
     out.flush();
     CheckWritten(out, dir + "/runs.csv");

@@ -241,14 +241,26 @@ methods::slam::SlamOptions ReadSlam(YamlMap m, std::size_t walls) {
   return o;
 }
 
-void ReadMeasurements(YamlMap m, pipeline::MintExperimentConfig& config) {
+void ReadMeasurements(YamlMap m, Scenario& scenario) {
+  auto& config = scenario.mint;
   const std::string model = m.String("model", std::string("cir"));
   if (model == "cir") {
     config.measurement_model = pipeline::MeasurementModel::kCir;
   } else if (model == "ranges") {
     config.measurement_model = pipeline::MeasurementModel::kRangeLevel;
+  } else if (model == "recorded") {
+    config.measurement_model = pipeline::MeasurementModel::kRecorded;
+    RecordingFiles files;
+    files.anchors = m.FilePath("anchors");
+    files.ranges = m.FilePath("ranges");
+    if (m.Has("truth")) files.truth = m.FilePath("truth");
+    if (m.Has("start_m")) config.start_m = m.Point("start_m");
+    if (!files.truth && !config.start_m) {
+      m.Fail("start_m", "missing: without a truth file the tracker needs its start position [x, y] (m)");
+    }
+    scenario.recording_files = files;
   } else {
-    m.Fail("model", "unknown measurement model '" + model + "' (available: cir, ranges)");
+    m.Fail("model", "unknown measurement model '" + model + "' (available: cir, ranges, recorded)");
   }
   auto& o = config.range_level;
   o.detection_probability = m.NumberInRange("detection_probability", o.detection_probability, 0.0, 1.0, "");
@@ -333,6 +345,44 @@ void CheckInside(const geometry::FloorPlan& plan, const Vec2& p, YamlMap& where,
   }
 }
 
+// Whether the document's measurements.model is "recorded" (a malformed section is reported later
+// by ReadMeasurements).
+bool IsRecorded(const YAML::Node& doc) {
+  const YAML::Node m = doc["measurements"];
+  if (!m || !m.IsMap()) return false;
+  const YAML::Node model = m["model"];
+  return model && model.IsScalar() && model.Scalar() == "recorded";
+}
+
+// Reads the recording named by the scenario; its anchors become the scenario's.
+void LoadRecordedData(Scenario& scenario) {
+  auto& config = scenario.mint;
+  const RecordingFiles& files = *scenario.recording_files;
+  auto recording = std::make_shared<pipeline::Recording>(LoadRecording(files));
+  for (std::size_t a = 0; a < recording->anchors_m.size(); ++a) {
+    const Vec2& p = recording->anchors_m[a];
+    if (!config.plan.Encloses(p) || config.plan.InsideObstacle(p)) {
+      throw InputError(fmt::format("{}: anchor '{}' at [{}, {}] m is outside the floor plan of {} (or inside an obstacle)",
+                                   files.anchors, recording->anchor_ids[a], FormatValue(p.x()), FormatValue(p.y()),
+                                   scenario.file));
+    }
+  }
+  const Vec2 start_m = config.start_m ? *config.start_m : *recording->TruthAt(recording->steps.front().t_s);
+  if (!config.plan.Encloses(start_m)) {
+    throw InputError(fmt::format("{}: the start [{}, {}] m is outside the floor plan", config.start_m ? scenario.file
+                                                                                                       : *files.truth,
+                                 FormatValue(start_m.x()), FormatValue(start_m.y())));
+  }
+  config.anchor_ids = recording->anchor_ids;
+  config.anchors_m = recording->anchors_m;
+  config.known_anchors_m = config.anchors_m;
+  pipeline::TrajectorySpec spec;
+  spec.name = "recorded";
+  config.trajectories = {spec};
+  config.runs = 1;
+  config.recording = std::move(recording);
+}
+
 }  // namespace
 
 Scenario LoadScenario(const std::string& path, const ScenarioOverrides& overrides) {
@@ -352,8 +402,20 @@ Scenario LoadScenario(const std::string& path, const ScenarioOverrides& override
   } else {
     root.Fail("method", "unknown method '" + scenario.method + "' (available: mint, slam)");
   }
+  // Recorded data are one run with their own anchors and trajectory (checked before the keys
+  // that would otherwise be required).
+  const bool recorded = IsRecorded(doc);
+  if (recorded) {
+    config.runs = 1;
+    for (const char* key : {"anchors", "trajectories", "run_grid", "perturb_initial_position"}) {
+      if (root.Has(key)) {
+        root.Fail(key, "not used with measurements.model recorded (the recording has the anchors and the "
+                       "trajectory); remove it");
+      }
+    }
+  }
   config.seed = root.Unsigned("seed", config.seed);
-  config.runs = root.Integer("runs", config.runs, 1, kMaxRuns);
+  config.runs = root.Integer("runs", config.runs, 1, recorded ? 1 : kMaxRuns);
   config.threads = root.Integer("threads", config.threads, 0, kMaxThreads);
   config.perturb_initial_position = root.Boolean("perturb_initial_position", config.perturb_initial_position);
   {
@@ -378,7 +440,7 @@ Scenario LoadScenario(const std::string& path, const ScenarioOverrides& override
   config.known_plan = config.plan;
 
   std::set<std::string> ids;
-  for (auto& a : root.MapList("anchors", false)) {
+  for (auto& a : recorded ? std::vector<YamlMap>() : root.MapList("anchors", false)) {
     const std::string id = a.String("id");
     if (!ids.insert(id).second) a.Fail("id", "duplicate anchor id '" + id + "'");
     if (!IsPlainName(id)) a.Fail("id", "must not contain commas, quotes or line breaks (it goes into CSV files)");
@@ -390,7 +452,7 @@ Scenario LoadScenario(const std::string& path, const ScenarioOverrides& override
   }
   config.known_anchors_m = config.anchors_m;
 
-  for (auto& t : root.MapList("trajectories", false)) {
+  for (auto& t : recorded ? std::vector<YamlMap>() : root.MapList("trajectories", false)) {
     pipeline::TrajectorySpec spec;
     spec.name = t.String("name");
     spec.waypoints_m = t.Points("waypoints_m", 2);
@@ -428,7 +490,7 @@ Scenario LoadScenario(const std::string& path, const ScenarioOverrides& override
   config.mpc = ReadMpc(root.OptionalMap("mpc"));
   config.mint = ReadMint(root.OptionalMap("mint"), config.plan.walls().size());
   config.slam = ReadSlam(root.OptionalMap("slam"), config.plan.walls().size());
-  ReadMeasurements(root.OptionalMap("measurements"), config);
+  ReadMeasurements(root.OptionalMap("measurements"), scenario);
   {
     YamlMap evaluation = root.OptionalMap("evaluation");
     YamlMap divergence = evaluation.OptionalMap("divergence");
@@ -440,8 +502,10 @@ Scenario LoadScenario(const std::string& path, const ScenarioOverrides& override
     evaluation.RejectUnknownKeys();
   }
   root.RejectUnknownKeys();
+  if (recorded) LoadRecordedData(scenario);
 
   if (overrides.runs) {
+    if (recorded && *overrides.runs != 1) throw InputError("--runs: recorded data are one run (got " + std::to_string(*overrides.runs) + ")");
     if (*overrides.runs < 1 || *overrides.runs > kMaxRuns) {
       throw InputError(fmt::format("--runs: {} is out of range, expected [1, {}]", *overrides.runs, kMaxRuns));
     }

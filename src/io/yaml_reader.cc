@@ -244,6 +244,15 @@ std::string YamlMap::String(const std::string& key, const std::optional<std::str
   return n.Scalar();
 }
 
+std::string YamlMap::FilePath(const std::string& key) {
+  const std::string value = String(key);
+  if (value.empty()) Fail(key, "expected a file name, got an empty string");
+  const std::filesystem::path path(value);
+  if (path.is_absolute()) return value;
+  // Relative to the file that set the key (a scenario may extend one in another directory).
+  return (std::filesystem::path(origins_->FileOf(KeyPath(key))).parent_path() / path).lexically_normal().string();
+}
+
 Vec2 YamlMap::Point(const std::string& key) {
   const YAML::Node n = Get(key);
   if (!n) Fail(key, "missing (required), expected [x, y] in metres");

@@ -20,6 +20,7 @@
 #include "mirage/eval/error_stats.h"
 #include "mirage/eval/position_error_bound.h"
 #include "mirage/geometry/trajectory.h"
+#include "mirage/pipeline/run_simulator.h"
 #include "mirage/pipeline/tracker_adapter.h"
 
 namespace mirage::pipeline {
@@ -33,88 +34,75 @@ double Seconds(Clock::duration d) { return std::chrono::duration<double>(d).coun
 using VaKey = std::pair<int, std::vector<int>>;
 
 struct Shared {
-  const MintExperimentConfig* config = nullptr;
-  geometry::VirtualAnchorSet channel_vas;
+  explicit Shared(const MintExperimentConfig& config) : simulation(config) {}
+  SimulationContext simulation;
   geometry::VirtualAnchorSet known_vas;
   std::vector<int> known_to_channel;  // known VA id -> channel VA id, or -1
-  std::unique_ptr<channel::CirSynthesizer> synthesizer;
-  std::unique_ptr<dsp::MpcExtractor> extractor;
-  std::unique_ptr<channel::RangeLevelSimulator> range_level;
 };
 
+// Fills a step record from the tracker's output; truth and PEB when known.
+StepRecord MakeStepRecord(double t_s, const std::optional<Vec2>& truth_m, const TrackerStep& step) {
+  StepRecord s;
+  s.t_s = t_s;
+  s.truth_m = truth_m;
+  s.estimate_m = step.position_m;
+  s.covariance_m2 = step.covariance_m2;
+  if (truth_m) s.error_m = (step.position_m - *truth_m).norm();
+  s.associations = step.associations;
+  s.relocalized = step.relocalized;
+  return s;
+}
+
+void CountEvents(const TrackerStep& step, RunRecord& record) {
+  if (step.relocalized) ++record.relocalizations;
+  if (step.constrained) ++record.constrained_steps;
+  if (step.rejected_update) ++record.rejected_updates;
+}
+
 RunRecord RunOne(const Shared& shared, int trajectory, int run) {
-  const MintExperimentConfig& config = *shared.config;
-  const TrajectorySpec& spec = config.trajectories[static_cast<std::size_t>(trajectory)];
-  const auto stream = static_cast<std::uint64_t>(trajectory) * 1'000'003ULL + static_cast<std::uint64_t>(run);
-  const core::Rng run_rng(config.seed, stream);
-  // One stream per anchor and purpose, so that adding an anchor shifts no other CIR's noise.
-  std::vector<core::Rng> diffuse_rng, noise_rng;
-  for (std::size_t a = 0; a < config.anchors_m.size(); ++a) {
-    diffuse_rng.push_back(run_rng.Substream("diffuse/" + std::to_string(a)));
-    noise_rng.push_back(run_rng.Substream("noise/" + std::to_string(a)));
-  }
-  core::Rng init_rng = run_rng.Substream("init");
-  core::Rng ranges_rng = run_rng.Substream("ranges");
+  const MintExperimentConfig& config = *shared.simulation.config;
+  RunSimulator simulator(shared.simulation, trajectory, run);
+  const auto& samples = simulator.samples();
 
   RunRecord record;
   record.trajectory = trajectory;
   record.run = run;
-  record.offset_m = RunOffset(config.run_grid, run);
-  const auto samples = geometry::SampleTrajectory(spec.waypoints_m, spec.speed_mps, spec.dt_s, record.offset_m);
+  record.offset_m = simulator.offset_m();
 
-  const double sigma1_m = shared.synthesizer->pulse().range_sigma_at_unit_sinr_m();
+  const double sigma1_m = shared.simulation.synthesizer->pulse().range_sigma_at_unit_sinr_m();
   TrackerAdapter tracker(config, shared.known_vas, sigma1_m);
   // The thesis starts at the known start point with variance sigma_i^2 (Tab. 3.1); optionally
   // the start is drawn from that distribution instead.
   const double sigma_i = config.mint.initial_position_sigma_m;
+  core::Rng& init_rng = simulator.init_rng();
   const Vec2 start_error = Vec2(init_rng.Normal(0.0, sigma_i), init_rng.Normal(0.0, sigma_i));
   const Vec2 p0 = samples.front().position_m + (config.perturb_initial_position ? start_error : Vec2(Vec2::Zero()));
   tracker.Initialize(samples.front().t_s, p0);
 
-  const int anchors = static_cast<int>(config.anchors_m.size());
-  std::vector<core::AnchorRanges> measurements(static_cast<std::size_t>(anchors));
+  std::vector<core::AnchorRanges> measurements;
   std::vector<eval::RangeInformation> information;
   std::map<int, std::size_t> path_index_by_channel_va;  // channel VA id -> index in record.paths (this step)
   std::set<int> visible_channel_ids;                    // channel VAs seen at any step (map truth)
   record.steps.reserve(samples.size());
 
-  for (const auto& sample : samples) {
+  for (std::size_t k = 0; k < samples.size(); ++k) {
+    const auto& sample = samples[k];
     const auto t_sim = Clock::now();
     information.clear();
     path_index_by_channel_va.clear();
-    const int step_index = static_cast<int>(record.steps.size());
-    std::vector<channel::SynthesizedCir> cirs;
-    cirs.reserve(static_cast<std::size_t>(anchors));
-    for (int a = 0; a < anchors; ++a) {
-      const auto paths = channel::ComputeSpecularPaths(shared.channel_vas, a, config.plan, sample.position_m,
-                                                       config.channel.pulse.carrier_hz);
-      const double los_distance_m =
-          std::max((sample.position_m - config.anchors_m[static_cast<std::size_t>(a)]).norm(), 0.01);
-      std::vector<channel::PathTruth> truths;
-      if (shared.range_level) {
-        measurements[static_cast<std::size_t>(a)] = shared.range_level->Simulate(a, paths, los_distance_m, ranges_rng, &truths);
-      } else {
-        cirs.push_back(shared.synthesizer->Synthesize(paths, los_distance_m, diffuse_rng[static_cast<std::size_t>(a)],
-                                                      noise_rng[static_cast<std::size_t>(a)]));
-        truths = cirs.back().paths;
-      }
-      for (const auto& truth : truths) {
-        information.push_back({shared.channel_vas[truth.va_id].position_m, truth.sinr});
+    const int step_index = static_cast<int>(k);
+    const auto& truths = simulator.Simulate(k);
+    for (std::size_t a = 0; a < truths.size(); ++a) {
+      for (const auto& truth : truths[a]) {
+        information.push_back({shared.simulation.channel_vas[truth.va_id].position_m, truth.sinr});
         path_index_by_channel_va[truth.va_id] = record.paths.size();
         visible_channel_ids.insert(truth.va_id);
-        record.paths.push_back({step_index, a, truth.va_id, truth.order, truth.delay_s, truth.amplitude,
-                                core::PowerRatioToDb(truth.sinr), std::nullopt});
+        record.paths.push_back({step_index, static_cast<int>(a), truth.va_id, truth.order, truth.delay_s,
+                                truth.amplitude, core::PowerRatioToDb(truth.sinr), std::nullopt});
       }
     }
     const auto t_est = Clock::now();
-    for (int a = 0; a < anchors && !shared.range_level; ++a) {
-      auto& m = measurements[static_cast<std::size_t>(a)];
-      m.anchor_index = a;
-      m.ranges.clear();
-      for (const auto& mpc : shared.extractor->Extract(cirs[static_cast<std::size_t>(a)].cir)) {
-        m.ranges.push_back({mpc.range_m, std::abs(mpc.amplitude)});
-      }
-    }
+    simulator.Measure(measurements);
     const auto step = tracker.Step(sample.t_s, measurements);
     const auto t_end = Clock::now();
     record.simulate_s += Seconds(t_est - t_sim);
@@ -129,52 +117,91 @@ RunRecord RunOne(const Shared& shared, int trajectory, int run) {
       record.paths[it->second].estimated_sinr_db = core::PowerRatioToDb(std::max(sinr, 1e-4));
     }
 
-    StepRecord s;
-    s.t_s = sample.t_s;
-    s.truth_m = sample.position_m;
-    s.estimate_m = step.position_m;
-    s.covariance_m2 = step.covariance_m2;
-    s.error_m = (step.position_m - sample.position_m).norm();
+    StepRecord s = MakeStepRecord(sample.t_s, sample.position_m, step);
     s.peb_m = eval::PositionErrorBound(sample.position_m, information, sigma1_m);
-    s.associations = step.associations;
-    s.relocalized = step.relocalized;
-    if (step.relocalized) ++record.relocalizations;
-    if (step.constrained) ++record.constrained_steps;
-    if (step.rejected_update) ++record.rejected_updates;
+    CountEvents(step, record);
     record.steps.push_back(s);
   }
-  std::vector<double> errors;
-  errors.reserve(record.steps.size());
-  for (const auto& s : record.steps) errors.push_back(s.error_m);
-  record.diverged = eval::IsDiverged(errors, config.divergence);
+  record.diverged = eval::IsDiverged(StepErrors(record.steps), config.divergence);
   if (config.method == Method::kSlam) {
     record.map = tracker.Map();
-    record.map_score = EvaluateMap(record.map, shared.channel_vas, visible_channel_ids, config.map_cutoff_m);
+    record.map_score = EvaluateMap(record.map, shared.simulation.channel_vas, visible_channel_ids, config.map_cutoff_m);
+  }
+  return record;
+}
+
+// The one run over recorded data: the tracker sees the recorded ranges; errors and the map score
+// exist only with truth (the true VAs are those of the scenario's floor plan visible from the
+// true positions at the recorded steps).
+RunRecord RunRecorded(const Shared& shared) {
+  const MintExperimentConfig& config = *shared.simulation.config;
+  const Recording& recording = *config.recording;
+  RunRecord record;
+  const double sigma1_m = shared.simulation.synthesizer->pulse().range_sigma_at_unit_sinr_m();
+  TrackerAdapter tracker(config, shared.known_vas, sigma1_m);
+  const double t0_s = recording.steps.front().t_s;
+  const std::optional<Vec2> start_m = config.start_m ? config.start_m : recording.TruthAt(t0_s);
+  tracker.Initialize(t0_s, *start_m);  // the scenario loader ensures one of the two exists
+  std::set<int> visible_channel_ids;
+  record.steps.reserve(recording.steps.size());
+  for (const auto& recorded : recording.steps) {
+    const auto t_est = Clock::now();
+    const auto step = tracker.Step(recorded.t_s, recorded.anchors);
+    record.estimate_s += Seconds(Clock::now() - t_est);
+    const std::optional<Vec2> truth_m = recording.TruthAt(recorded.t_s);
+    if (truth_m && config.method == Method::kSlam) {
+      for (std::size_t a = 0; a < config.anchors_m.size(); ++a) {
+        for (const auto& path : channel::ComputeSpecularPaths(shared.simulation.channel_vas, static_cast<int>(a),
+                                                              config.plan, *truth_m, config.channel.pulse.carrier_hz)) {
+          visible_channel_ids.insert(path.va_id);
+        }
+      }
+    }
+    CountEvents(step, record);
+    record.steps.push_back(MakeStepRecord(recorded.t_s, truth_m, step));
+  }
+  if (recording.has_truth()) record.diverged = eval::IsDiverged(StepErrors(record.steps), config.divergence);
+  if (config.method == Method::kSlam) {
+    record.map = tracker.Map();
+    if (recording.has_truth()) {
+      record.map_score = EvaluateMap(record.map, shared.simulation.channel_vas, visible_channel_ids, config.map_cutoff_m);
+    }
   }
   return record;
 }
 
 }  // namespace
 
+std::vector<double> StepErrors(const std::vector<StepRecord>& steps) {
+  std::vector<double> errors;
+  errors.reserve(steps.size());
+  for (const auto& s : steps) {
+    if (s.error_m) errors.push_back(*s.error_m);
+  }
+  return errors;
+}
+
 MintExperimentResult RunMintExperiment(const MintExperimentConfig& config, const ProgressCallback& progress) {
   const auto t_start = Clock::now();
-  Shared shared;
-  shared.config = &config;
-  shared.channel_vas = geometry::VirtualAnchorSet::Generate(config.anchors_m, config.plan, config.channel_max_order);
+  Shared shared(config);
   shared.known_vas =
       geometry::VirtualAnchorSet::Generate(config.known_anchors_m, config.known_plan, KnownVaOrder(config));
   std::map<VaKey, int> channel_by_key;
-  for (const auto& va : shared.channel_vas.all()) channel_by_key[{va.anchor_index, va.walls}] = va.id;
+  for (const auto& va : shared.simulation.channel_vas.all()) channel_by_key[{va.anchor_index, va.walls}] = va.id;
   for (const auto& va : shared.known_vas.all()) {
     const auto it = channel_by_key.find({va.anchor_index, va.walls});
     shared.known_to_channel.push_back(it == channel_by_key.end() ? -1 : it->second);
   }
-  shared.synthesizer = std::make_unique<channel::CirSynthesizer>(config.channel);
-  shared.extractor = std::make_unique<dsp::MpcExtractor>(config.mpc, shared.synthesizer->pulse(),
-                                                         shared.synthesizer->sample_count(),
-                                                         config.channel.sample_period_s);
-  if (config.measurement_model == MeasurementModel::kRangeLevel) {
-    shared.range_level = std::make_unique<channel::RangeLevelSimulator>(config.range_level, *shared.synthesizer);
+  if (config.recording) {
+    MintExperimentResult result;
+    result.has_truth = config.recording->has_truth();
+    result.simulated = false;
+    result.runs.push_back(RunRecorded(shared));
+    if (progress) progress(1, 1);
+    result.known_vas = std::move(shared.known_vas);
+    result.channel_vas = std::move(shared.simulation.channel_vas);
+    result.wall_s = Seconds(Clock::now() - t_start);
+    return result;
   }
 
   const int trajectories = static_cast<int>(config.trajectories.size());
@@ -211,7 +238,7 @@ MintExperimentResult RunMintExperiment(const MintExperimentConfig& config, const
   }
   if (error) std::rethrow_exception(error);
   result.known_vas = std::move(shared.known_vas);
-  result.channel_vas = std::move(shared.channel_vas);
+  result.channel_vas = std::move(shared.simulation.channel_vas);
   result.wall_s = Seconds(Clock::now() - t_start);
   return result;
 }

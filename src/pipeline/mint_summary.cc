@@ -18,9 +18,10 @@ SinrStats Stats(const std::vector<double>& values_db) {
   return s;
 }
 
-GroupSummary Group(const std::string& name, const std::vector<const RunRecord*>& runs) {
+GroupSummary Group(const std::string& name, const std::vector<const RunRecord*>& runs, bool has_truth, bool simulated) {
   GroupSummary g;
   g.name = name;
+  g.has_truth = has_truth;
   g.runs = static_cast<int>(runs.size());
   std::vector<double> errors, pebs;
   for (const RunRecord* run : runs) {
@@ -30,11 +31,11 @@ GroupSummary Group(const std::string& name, const std::vector<const RunRecord*>&
     g.constrained_steps += run->constrained_steps;
     g.rejected_updates += run->rejected_updates;
     for (const auto& s : run->steps) {
-      errors.push_back(s.error_m);
+      if (s.error_m) errors.push_back(*s.error_m);
       if (s.peb_m) {
         pebs.push_back(*s.peb_m);
       } else {
-        ++g.peb_singular_steps;
+        if (simulated) ++g.peb_singular_steps;  // recorded data have no PEB at all
       }
     }
   }
@@ -102,9 +103,9 @@ MintSummary Summarize(const MintExperimentConfig& config, const MintExperimentRe
       }
     }
   }
-  summary.overall = Group("all", all);
+  summary.overall = Group("all", all, result.has_truth, result.simulated);
   for (std::size_t t = 0; t < config.trajectories.size(); ++t) {
-    summary.trajectories.push_back(Group(config.trajectories[t].name, by_trajectory[t]));
+    summary.trajectories.push_back(Group(config.trajectories[t].name, by_trajectory[t], result.has_truth, result.simulated));
   }
   for (const auto& [key, values] : true_db) summary.true_sinr[key] = Stats(values);
   for (const auto& [key, values] : estimated_db) summary.estimated_sinr[key] = Stats(values);

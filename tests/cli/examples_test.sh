@@ -17,13 +17,14 @@ failures=0
 count=0
 
 shopt -s nullglob
-files=("$examples"/*.yaml)
+files=("$examples"/*.yaml "$examples"/*/scenario.yaml)  # */scenario.yaml: recordings
 if [[ ${#files[@]} -eq 0 ]]; then
   echo "FAIL: no examples in $examples"
   exit 1
 fi
 for file in "${files[@]}"; do
   name=$(basename "$file" .yaml)
+  [[ $name == scenario ]] && name=$(basename "$(dirname "$file")")
   count=$((count + 1))
   rm -rf "$out/$name.json" "$out/${name}_csv" "$out/$name.png" "$out/$name.png.json"
   start=$(date +%s.%N)

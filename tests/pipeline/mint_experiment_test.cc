@@ -125,8 +125,12 @@ TEST(RunMintExperiment, OrdersRunsByTrajectoryThenRunWithTheirGridOffsets) {
     const auto& spec = config.trajectories[static_cast<std::size_t>(run.trajectory)];
     const auto samples = geometry::SampleTrajectory(spec.waypoints_m, spec.speed_mps, spec.dt_s, run.offset_m);
     ASSERT_EQ(run.steps.size(), samples.size());
-    ExpectVecNear(run.steps.front().truth_m, spec.waypoints_m.front() + run.offset_m, 1e-12);
-    for (const auto& s : run.steps) EXPECT_NEAR(s.error_m, (s.estimate_m - s.truth_m).norm(), 1e-12);
+    ASSERT_TRUE(run.steps.front().truth_m.has_value());
+    ExpectVecNear(*run.steps.front().truth_m, spec.waypoints_m.front() + run.offset_m, 1e-12);
+    for (const auto& s : run.steps) {
+      ASSERT_TRUE(s.truth_m && s.error_m);  // simulations always have the truth
+      EXPECT_NEAR(*s.error_m, (s.estimate_m - *s.truth_m).norm(), 1e-12);
+    }
   }
 }
 

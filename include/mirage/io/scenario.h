@@ -9,6 +9,7 @@
 #include <optional>
 #include <string>
 
+#include "mirage/io/recorded_data.h"
 #include "mirage/pipeline/experiment_config.h"
 
 namespace mirage::io {
@@ -17,7 +18,9 @@ namespace mirage::io {
 struct Scenario {
   std::string file;    ///< path it was read from
   std::string method;  ///< method name ("mint")
-  pipeline::MintExperimentConfig mint;  ///< configuration of the MINT experiment
+  pipeline::MintExperimentConfig mint;  ///< configuration of the experiment (MINT or SLAM)
+  /// The files of `measurements: {model: recorded}` (resolved paths); the data are in mint.recording.
+  std::optional<RecordingFiles> recording_files;
 };
 
 /// Command-line overrides applied after parsing (and validated like the file's values).

@@ -63,6 +63,8 @@ class YamlMap {
   bool Boolean(const std::string& key, bool fallback);
   /// A string; required when fallback is empty-optional.
   std::string String(const std::string& key, const std::optional<std::string>& fallback = std::nullopt);
+  /// A file name (required), resolved relative to the directory of the file that set the key.
+  std::string FilePath(const std::string& key);
   /// A point [x, y] (m).
   Vec2 Point(const std::string& key);
   /// A list of points [[x, y], ...] with at least min_count entries.

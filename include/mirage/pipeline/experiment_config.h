@@ -4,6 +4,8 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -15,6 +17,7 @@
 #include "mirage/geometry/floor_plan.h"
 #include "mirage/methods/mint/mint_tracker.h"
 #include "mirage/methods/slam/slam_tracker.h"
+#include "mirage/pipeline/recording.h"
 
 namespace mirage::pipeline {
 
@@ -47,6 +50,7 @@ enum class Method {
 enum class MeasurementModel {
   kCir,         ///< sampled CIRs with diffuse multipath, then MPC extraction (the full path)
   kRangeLevel,  ///< ranges drawn directly: CRLB noise, missed detections, Poisson clutter
+  kRecorded,    ///< no simulation: the ranges of a recording (anchors.csv, ranges.csv, truth.csv)
 };
 
 /// A complete simulated experiment (MINT or SLAM).
@@ -69,6 +73,11 @@ struct MintExperimentConfig {
   methods::slam::SlamOptions slam;
   MeasurementModel measurement_model = MeasurementModel::kCir;
   channel::RangeLevelOptions range_level;  ///< used with MeasurementModel::kRangeLevel
+  /// With MeasurementModel::kRecorded: the data (anchors_m and anchor_ids are the recording's;
+  /// trajectories holds one entry naming it; runs is 1).
+  std::shared_ptr<const Recording> recording;
+  /// Where the tracker starts on recorded data (m); empty: the truth at the first step.
+  std::optional<Vec2> start_m;
   /// OSPA cut-off of the map error (m), > 0: 0.5 m (issue 4).
   double map_cutoff_m = 0.5;
   eval::DivergenceRule divergence;

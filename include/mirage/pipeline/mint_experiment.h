@@ -21,11 +21,11 @@ namespace mirage::pipeline {
 /// One estimate compared with the truth at one step.
 struct StepRecord {
   double t_s = 0.0;
-  Vec2 truth_m = Vec2::Zero();
+  std::optional<Vec2> truth_m;  ///< empty on recorded data without truth
   Vec2 estimate_m = Vec2::Zero();
   Eigen::Matrix2d covariance_m2 = Eigen::Matrix2d::Zero();
-  double error_m = 0.0;
-  std::optional<double> peb_m;  ///< position error bound at the true position
+  std::optional<double> error_m;  ///< |estimate - truth|, empty without truth
+  std::optional<double> peb_m;  ///< position error bound at the true position (simulations only)
   int associations = 0;         ///< associated ranges, all anchors
   bool relocalized = false;     ///< the tracker declared the track lost and restarted
 };
@@ -42,7 +42,10 @@ struct PathRecord {
   std::optional<double> estimated_sinr_db;  ///< the tracker's online estimate at this step, if any
 };
 
-/// One Monte-Carlo run.
+/// The position errors of the steps that have one (none on recorded data without truth).
+std::vector<double> StepErrors(const std::vector<StepRecord>& steps);
+
+/// One Monte-Carlo run (or the one run over recorded data).
 struct RunRecord {
   int trajectory = 0;
   int run = 0;
@@ -61,6 +64,10 @@ struct RunRecord {
 
 /// All runs of an experiment.
 struct MintExperimentResult {
+  /// Whether the runs have a true trajectory (always for simulations; recorded data with truth.csv).
+  bool has_truth = true;
+  /// False for a run over recorded data (no path truth, no PEB).
+  bool simulated = true;
   std::vector<RunRecord> runs;  ///< ordered by trajectory, then run
   geometry::VirtualAnchorSet known_vas;    ///< VAs the tracker used
   geometry::VirtualAnchorSet channel_vas;  ///< VAs of the simulated channel (PathRecord::va_id)
@@ -70,7 +77,8 @@ struct MintExperimentResult {
 /// Called after each finished run with (finished, total); may be called from worker threads.
 using ProgressCallback = std::function<void(int, int)>;
 
-/// Runs the experiment. Rethrows the first exception of a worker (e.g. std::bad_alloc).
+/// Runs the experiment: the Monte-Carlo runs of a simulation, or the one run over recorded data
+/// (config.recording). Rethrows the first exception of a worker (e.g. std::bad_alloc).
 MintExperimentResult RunMintExperiment(const MintExperimentConfig& config, const ProgressCallback& progress = {});
 
 }  // namespace mirage::pipeline

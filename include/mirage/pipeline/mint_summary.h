@@ -41,6 +41,8 @@ struct GroupSummary {
   std::string name;
   int runs = 0;
   int steps = 0;
+  /// False on recorded data without truth: then error and diverged_runs mean nothing.
+  bool has_truth = true;
   eval::ErrorStats error;
   int diverged_runs = 0;
   std::optional<double> peb_mean_m;  ///< empty when no step had a finite PEB

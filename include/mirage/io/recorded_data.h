@@ -1,0 +1,44 @@
+// SPDX-License-Identifier: MIT
+// Recorded range-level data in CSV files (docs/recorded_data.md, ROADMAP.md "Recorded data"):
+//   anchors.csv  anchor_id,x_m,y_m[,z_m]
+//   ranges.csv   t_s,anchor_id,range_m[,amplitude]   several unlabeled rows per time and anchor
+//   truth.csv    t_s,x_m,y_m[,z_m]                   optional
+// Reading is strict: a missing field, an unknown anchor, time going backwards, a negative or
+// non-finite range is an InputError naming the file and line; nothing is guessed or dropped.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "mirage/pipeline/recording.h"
+
+namespace mirage::io {
+
+/// Parses anchors.csv into recording.anchor_ids / anchors_m / anchor_heights_m.
+/// @param file the name used in messages
+void ParseAnchorsCsv(std::string_view text, const std::string& file, pipeline::Recording& recording);
+
+/// Parses ranges.csv into recording.steps; the anchors must be parsed already. Rows with the
+/// same t_s form one step (they must be consecutive: t_s never decreases).
+void ParseRangesCsv(std::string_view text, const std::string& file, pipeline::Recording& recording);
+
+/// Parses truth.csv into recording.truth (t_s strictly increasing).
+void ParseTruthCsv(std::string_view text, const std::string& file, pipeline::Recording& recording);
+
+/// The files of one recording.
+struct RecordingFiles {
+  std::string anchors;
+  std::string ranges;
+  std::optional<std::string> truth;
+};
+
+/// Reads and checks a recording. Every step must lie inside the truth's time span when a truth
+/// file is given (the error needs a true position at every step).
+pipeline::Recording LoadRecording(const RecordingFiles& files);
+
+/// Writes anchors.csv, ranges.csv and (with truth) truth.csv into `dir` (created if missing).
+/// Numbers are written in their shortest exact form, so reading them back gives the same doubles.
+void WriteRecording(const std::string& dir, const pipeline::Recording& recording);
+
+}  // namespace mirage::io

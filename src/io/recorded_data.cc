@@ -1,0 +1,162 @@
+// SPDX-License-Identifier: MIT
+#include "mirage/io/recorded_data.h"
+
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include <fmt/format.h>
+
+#include "mirage/io/csv_reader.h"
+#include "mirage/io/input_error.h"
+
+namespace mirage::io {
+namespace {
+
+std::string ReadFile(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw InputError(path + ": is a directory, expected a CSV file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path + ": cannot open");
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw InputError(path + ": read failed");
+  return text.str();
+}
+
+std::ofstream OpenForWriting(const std::string& path) {
+  std::ofstream out(path);
+  if (!out) throw InputError(path + ": cannot open for writing");
+  return out;
+}
+
+void Close(std::ofstream& out, const std::string& path) {
+  out.flush();
+  if (!out) throw InputError(path + ": write failed");
+}
+
+}  // namespace
+
+void ParseAnchorsCsv(std::string_view text, const std::string& file, pipeline::Recording& recording) {
+  CsvReader csv(text, file, {{"anchor_id"}, {"x_m"}, {"y_m"}, {"z_m", false}});
+  recording.anchor_ids.clear();
+  recording.anchors_m.clear();
+  recording.anchor_heights_m.clear();
+  while (csv.Next()) {
+    const std::string id(csv.Field("anchor_id"));
+    if (id.empty()) csv.Fail("anchor_id", "missing value (expected an anchor id)");
+    for (const auto& known : recording.anchor_ids) {
+      if (known == id) csv.Fail("anchor_id", "duplicate anchor id");
+    }
+    recording.anchor_ids.push_back(id);
+    recording.anchors_m.emplace_back(csv.Number("x_m"), csv.Number("y_m"));
+    recording.anchor_heights_m.push_back(csv.Has("z_m") ? std::optional<double>(csv.Number("z_m")) : std::nullopt);
+  }
+  if (recording.anchor_ids.empty()) throw InputError(file + ": no anchors (expected at least one row after the header)");
+}
+
+void ParseRangesCsv(std::string_view text, const std::string& file, pipeline::Recording& recording) {
+  CsvReader csv(text, file, {{"t_s"}, {"anchor_id"}, {"range_m"}, {"amplitude", false}});
+  std::map<std::string, int, std::less<>> anchor_index;
+  for (std::size_t a = 0; a < recording.anchor_ids.size(); ++a) anchor_index[recording.anchor_ids[a]] = static_cast<int>(a);
+  recording.steps.clear();
+  while (csv.Next()) {
+    const double t_s = csv.Number("t_s");
+    const std::string_view id = csv.Field("anchor_id");
+    const auto it = anchor_index.find(id);
+    if (it == anchor_index.end()) csv.Fail("anchor_id", "unknown anchor (not in the anchors file)");
+    const double range_m = csv.Number("range_m");
+    if (range_m < 0.0) csv.Fail("range_m", "a range must be >= 0 m");
+    core::RangeMeasurement m{range_m, std::nullopt};
+    if (csv.Has("amplitude") && !csv.Field("amplitude").empty()) {
+      m.amplitude = csv.Number("amplitude");
+      if (*m.amplitude < 0.0) csv.Fail("amplitude", "an amplitude magnitude must be >= 0");
+    }
+    if (recording.steps.empty() || t_s > recording.steps.back().t_s) {
+      pipeline::RecordedStep step;
+      step.t_s = t_s;
+      for (std::size_t a = 0; a < recording.anchor_ids.size(); ++a) step.anchors.push_back({static_cast<int>(a), {}});
+      recording.steps.push_back(std::move(step));
+    } else if (t_s < recording.steps.back().t_s) {
+      csv.Fail("t_s", fmt::format("time goes backwards (the previous row has t_s = {})", recording.steps.back().t_s));
+    }
+    recording.steps.back().anchors[static_cast<std::size_t>(it->second)].ranges.push_back(m);
+  }
+  if (recording.steps.empty()) throw InputError(file + ": no ranges (expected at least one row after the header)");
+}
+
+void ParseTruthCsv(std::string_view text, const std::string& file, pipeline::Recording& recording) {
+  CsvReader csv(text, file, {{"t_s"}, {"x_m"}, {"y_m"}, {"z_m", false}});
+  recording.truth.clear();
+  while (csv.Next()) {
+    const double t_s = csv.Number("t_s");
+    if (!recording.truth.empty() && !(t_s > recording.truth.back().t_s)) {
+      csv.Fail("t_s", fmt::format("time must increase from row to row (the previous row has t_s = {})",
+                                  recording.truth.back().t_s));
+    }
+    recording.truth.push_back({t_s, Vec2(csv.Number("x_m"), csv.Number("y_m"))});
+    if (csv.Has("z_m")) (void)csv.Number("z_m");  // checked, not used by the 2-D methods
+  }
+  if (recording.truth.empty()) throw InputError(file + ": no truth rows (expected at least one row after the header)");
+}
+
+pipeline::Recording LoadRecording(const RecordingFiles& files) {
+  pipeline::Recording recording;
+  ParseAnchorsCsv(ReadFile(files.anchors), files.anchors, recording);
+  ParseRangesCsv(ReadFile(files.ranges), files.ranges, recording);
+  if (files.truth) {
+    ParseTruthCsv(ReadFile(*files.truth), *files.truth, recording);
+    const double first_s = recording.truth.front().t_s;
+    const double last_s = recording.truth.back().t_s;
+    for (const auto& step : recording.steps) {
+      if (step.t_s < first_s || step.t_s > last_s) {
+        throw InputError(fmt::format("{}: covers t_s in [{}, {}] s, but {} has a step at t_s = {} s", *files.truth,
+                                     first_s, last_s, files.ranges, step.t_s));
+      }
+    }
+  }
+  return recording;
+}
+
+void WriteRecording(const std::string& dir, const pipeline::Recording& recording) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) throw InputError(dir + ": cannot create the directory (" + ec.message() + ")");
+  {
+    const std::string path = dir + "/anchors.csv";
+    auto out = OpenForWriting(path);
+    const bool with_z = !recording.anchor_heights_m.empty() && recording.anchor_heights_m.front().has_value();
+    out << (with_z ? "anchor_id,x_m,y_m,z_m\n" : "anchor_id,x_m,y_m\n");
+    for (std::size_t a = 0; a < recording.anchor_ids.size(); ++a) {
+      out << fmt::format("{},{},{}", recording.anchor_ids[a], recording.anchors_m[a].x(), recording.anchors_m[a].y());
+      if (with_z) out << fmt::format(",{}", recording.anchor_heights_m[a].value_or(0.0));
+      out << "\n";
+    }
+    Close(out, path);
+  }
+  {
+    const std::string path = dir + "/ranges.csv";
+    auto out = OpenForWriting(path);
+    out << "t_s,anchor_id,range_m,amplitude\n";
+    for (const auto& step : recording.steps) {
+      for (const auto& anchor : step.anchors) {
+        const std::string& id = recording.anchor_ids[static_cast<std::size_t>(anchor.anchor_index)];
+        for (const auto& r : anchor.ranges) {
+          // fmt's "{}" is the shortest representation that reads back to the same double.
+          out << fmt::format("{},{},{},{}\n", step.t_s, id, r.range_m, r.amplitude ? fmt::format("{}", *r.amplitude) : "");
+        }
+      }
+    }
+    Close(out, path);
+  }
+  if (recording.has_truth()) {
+    const std::string path = dir + "/truth.csv";
+    auto out = OpenForWriting(path);
+    out << "t_s,x_m,y_m\n";
+    for (const auto& s : recording.truth) out << fmt::format("{},{},{}\n", s.t_s, s.position_m.x(), s.position_m.y());
+    Close(out, path);
+  }
+}
+
+}  // namespace mirage::io

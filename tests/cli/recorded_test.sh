@@ -1,0 +1,95 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
+# `mirage simulate` and recorded input (issue 4): a run written by `mirage simulate` and read back
+# by `mirage run DIR/scenario.yaml` gives exactly the track of the same simulated run (MINT on
+# CIRs and SLAM on range-level draws); without truth.csv the report has no error block but still
+# the trajectory and the map; bad recorded files stop the run with "FILE:LINE:" and exit 2.
+# Usage: recorded_test.sh MIRAGE_BINARY EXAMPLES_DIR WORK_DIR
+set -u
+
+if [[ $# -ne 3 ]]; then
+  echo "usage: $0 MIRAGE_BINARY EXAMPLES_DIR WORK_DIR" >&2
+  exit 2
+fi
+mirage=$1
+examples=$2
+work=$3
+rm -rf "$work"
+mkdir -p "$work"
+failures=0
+fail() {
+  failures=$((failures + 1))
+  echo "FAIL $*"
+}
+
+# same_track SCENARIO: simulate trajectory_1 run 0, replay it, compare with `mirage run --runs 1`.
+same_track() {
+  local scenario=$1 name
+  name=$(basename "$scenario" .yaml)
+  if ! "$mirage" simulate "$examples/$scenario" --out "$work/$name" --quiet; then
+    fail "$name: mirage simulate failed"
+    return
+  fi
+  "$mirage" run "$work/$name/scenario.yaml" --quiet --csv "$work/$name/replay" || fail "$name: replay failed"
+  "$mirage" run "$examples/$scenario" --runs 1 --quiet --csv "$work/$name/direct" || fail "$name: direct run failed"
+  # Columns 7, 8: x_est_m, y_est_m. The replay is one run named "recorded".
+  if ! diff <(awk -F, 'NR > 1 { print $7, $8 }' "$work/$name/replay/tracks.csv") \
+            <(awk -F, 'NR > 1 && $1 == "trajectory_1" { print $7, $8 }' "$work/$name/direct/tracks.csv") >/dev/null; then
+    fail "$name: the replayed track differs from the simulated run's track"
+  else
+    echo "ok   $name: replay of the recording == simulated run ($(($(wc -l <"$work/$name/replay/tracks.csv") - 1)) steps)"
+  fi
+}
+same_track seminar_room.yaml
+same_track seminar_room_ranges.yaml
+
+# SLAM on recorded ranges without truth: no error block, a trajectory and a map.
+slam=$work/slam_no_truth
+"$mirage" simulate "$examples/seminar_room_ranges.yaml" --out "$slam" --quiet
+sed -i -e 's/^method: mint/method: slam/' -e '/^  truth: truth.csv/d' "$slam/scenario.yaml"
+printf '  start_m: [%s]\n' "$(awk -F, 'NR == 2 { print $2 ", " $3 }' "$slam/truth.csv")" >>"$slam/scenario.yaml"
+if ! "$mirage" run "$slam/scenario.yaml" --quiet --json "$slam/report.json" --csv "$slam/csv"; then
+  fail "slam without truth: run failed"
+elif ! python3 - "$slam/report.json" "$slam/csv" <<'PY'
+import csv, json, sys
+j = json.load(open(sys.argv[1]))
+assert j["position_error_m"] is None, j["position_error_m"]
+assert j["diverged_runs"] is None
+assert j["recorded_data"]["truth"] is None
+rows = list(csv.DictReader(open(sys.argv[2] + "/tracks.csv")))
+assert len(rows) == j["steps"] > 100 and rows[0]["error_m"] == "" and rows[0]["x_est_m"] != ""
+assert len(list(csv.DictReader(open(sys.argv[2] + "/map.csv")))) >= 2  # at least the two anchors
+PY
+then
+  fail "slam without truth: report or CSV not as expected"
+else
+  echo "ok   slam without truth: no error block, track and map written"
+fi
+
+# bad NAME FILE SED_EXPR EXPECT: corrupt one file of a copy of the recording, expect FILE:LINE.
+base=$work/seminar_room_ranges
+bad() {
+  local name=$1 file=$2 expr=$3 expect=$4 dir=$work/bad_$1 status err
+  cp -r "$base" "$dir"
+  sed -i "$expr" "$dir/$file"
+  "$mirage" run "$dir/scenario.yaml" --quiet >"$dir/stdout" 2>"$dir/stderr"
+  status=$?
+  err=$(cat "$dir/stderr")
+  if [[ $status -ne 2 ]]; then
+    fail "$name: exit $status, expected 2 ($err)"
+  elif [[ $(wc -l <"$dir/stderr") -ne 1 || $err != "mirage: error: "*"$expect"* ]]; then
+    fail "$name: message '$err' lacks '$expect'"
+  else
+    echo "ok   $name: $err"
+  fi
+}
+bad missing_field ranges.csv '5s/,[^,]*,[^,]*$//' "ranges.csv:5: expected 4 fields"
+bad unknown_anchor ranges.csv '7s/,A[12],/,A9,/' "ranges.csv:7: anchor_id 'A9': unknown anchor"
+bad time_backwards ranges.csv '40s/^[^,]*,/0,/' "ranges.csv:40: t_s '0': time goes backwards"
+bad negative_range ranges.csv '9s/^\([^,]*,[^,]*\),/\1,-/' "ranges.csv:9: range_m '-"
+bad nan_range ranges.csv '11s/^\([^,]*,[^,]*\),[^,]*,/\1,NaN,/' "ranges.csv:11: range_m 'NaN': must be finite"
+bad anchor_outside anchors.csv '2s/.*/A1,9.5,7/' "anchors.csv: anchor 'A1' at [9.5, 7] m is outside"
+bad truth_short truth.csv '100,$d' "truth.csv: covers t_s in"
+
+[[ $failures -eq 0 ]] || exit 1
+echo "all recorded-data cases passed"
