@@ -30,6 +30,13 @@ void CovarianceOps::JosephUpdate(State& state, const Eigen::MatrixXd& K, const E
   Symmetrize(state);
 }
 
+void CovarianceOps::StandardUpdate(State& state, const Eigen::MatrixXd& K, const Eigen::MatrixXd& U,
+                                   const Eigen::VectorXd& innovation) {
+  state.mean_ += K * innovation;
+  state.covariance_.noalias() -= K * U.transpose();
+  Symmetrize(state);
+}
+
 void CovarianceOps::Symmetrize(State& state) {
   auto& P = state.covariance_;
   P = 0.5 * (P + P.transpose()).eval();

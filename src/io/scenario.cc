@@ -209,6 +209,11 @@ methods::slam::DiscoveryOptions ReadDiscovery(YamlMap m) {
   o.candidate_timeout_steps = m.Integer("candidate_timeout_steps", o.candidate_timeout_steps, 1, 1000000);
   o.candidate_max_age_steps = m.Integer("candidate_max_age_steps", o.candidate_max_age_steps, 1, 1000000);
   o.duplicate_radius_m = m.NumberInRange("duplicate_radius_m", o.duplicate_radius_m, 0.0, kHuge, "m");
+  o.verify_fit_rms_m = m.NumberInRange("verify_fit_rms_m", o.verify_fit_rms_m, 1e-9, kHuge, "m");
+  o.verify_min_inlier_fraction =
+      m.NumberInRange("verify_min_inlier_fraction", o.verify_min_inlier_fraction, 1e-9, 1.0, "");
+  o.verify_mirror_ratio = m.NumberInRange("verify_mirror_ratio", o.verify_mirror_ratio, 1.0, kHuge, "");
+  o.verify_max_sigma_m = m.NumberInRange("verify_max_sigma_m", o.verify_max_sigma_m, 1e-9, kHuge, "m");
   m.RejectUnknownKeys();
   Check(o, m);
   return o;
@@ -229,6 +234,11 @@ methods::slam::SlamOptions ReadSlam(YamlMap m, std::size_t walls) {
   o.innovation_gate_chi2 = m.NumberInRange("innovation_gate_chi2", o.innovation_gate_chi2, 0.0, 1e6, "");
   o.va_filter = m.Boolean("va_filter", o.va_filter);
   o.va_filter_sigma_m = m.NumberInRange("va_filter_sigma_m", o.va_filter_sigma_m, 1e-9, kHuge, "m");
+  o.va_filter_keeps_associating = m.Boolean("va_filter_keeps_associating", o.va_filter_keeps_associating);
+  o.va_filter_anchors = m.Boolean("va_filter_anchors", o.va_filter_anchors);
+  o.joseph_update = m.Boolean("joseph_update", o.joseph_update);
+  o.amplitude_gate_probability =
+      m.NumberInRange("amplitude_gate_probability", o.amplitude_gate_probability, 0.0, 0.5, "");
   {
     YamlMap motion = m.OptionalMap("motion");
     o.motion.accel_sigma_mps2 = motion.NumberInRange("accel_sigma_mps2", o.motion.accel_sigma_mps2, 1e-9, kHuge, "m/s^2");

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include <Eigen/Dense>
+#include <Eigen/SparseCore>
 #include <gtest/gtest.h>
 
 #include "mirage/core/rng.h"
@@ -270,6 +271,55 @@ TEST(EkfUpdateConsistency, TheNeesBoundFlagsAFilterThatUnderstatesItsNoise) {
 
   EXPECT_GT(r.mean_nees, 2.0 * nees_hi);  // about 8 = 4 x 2
   EXPECT_GT(r.mean_nis, nis_hi);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Sparse Jacobian and standard covariance form (the SLAM tracker's fast path)
+// ---------------------------------------------------------------------------------------------
+
+TEST(EkfUpdate, SparseJacobianAndStandardFormAgreeWithDenseJoseph) {
+  // A 12-dimensional state with a random SPD covariance and 5 rows of 4 non-zeros each, as a
+  // range row to a VA has (agent position and VA position columns).
+  core::Rng rng(3, 0);
+  const int n = 12;
+  Eigen::MatrixXd A(n, n);
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) A(i, j) = rng.Normal(0.0, 1.0);
+  }
+  const Eigen::MatrixXd P = A * A.transpose() + Eigen::MatrixXd::Identity(n, n);
+  Eigen::VectorXd x(n);
+  for (int i = 0; i < n; ++i) x(i) = rng.Normal(0.0, 1.0);
+  StateLayout layout;
+  for (int b = 0; b < n / 2; ++b) layout.Append({BlockKind::kVirtualAnchor, b}, 2);
+  const State prior(layout, x, P, 0.0);
+
+  const int m = 5;
+  Eigen::MatrixXd H_dense = Eigen::MatrixXd::Zero(m, n);
+  std::vector<Eigen::Triplet<double>> entries;
+  for (int r = 0; r < m; ++r) {
+    for (const int c : {0, 1, 2 + 2 * r, 3 + 2 * r}) {
+      const double v = rng.Normal(0.0, 1.0);
+      H_dense(r, c) = v;
+      entries.emplace_back(r, c, v);
+    }
+  }
+  Eigen::SparseMatrix<double, Eigen::RowMajor> H_sparse(m, n);
+  H_sparse.setFromTriplets(entries.begin(), entries.end());
+  Eigen::VectorXd nu(m);
+  for (int r = 0; r < m; ++r) nu(r) = rng.Normal(0.0, 1.0);
+  const Eigen::MatrixXd R = 0.3 * Eigen::MatrixXd::Identity(m, m);
+
+  State dense_joseph = prior, sparse_joseph = prior, sparse_standard = prior;
+  const auto a = EkfUpdate(dense_joseph, H_dense, nu, R);
+  const auto b = EkfUpdate(sparse_joseph, H_sparse, nu, R);
+  const auto c = EkfUpdate(sparse_standard, H_sparse, nu, R, CovarianceForm::kStandard);
+  ASSERT_TRUE(a.applied && b.applied && c.applied);
+  EXPECT_NEAR(a.nis, b.nis, 1e-10);
+  EXPECT_LT((dense_joseph.mean() - sparse_joseph.mean()).norm(), 1e-10);
+  EXPECT_LT((dense_joseph.covariance() - sparse_joseph.covariance()).norm(), 1e-10);
+  EXPECT_LT((dense_joseph.mean() - sparse_standard.mean()).norm(), 1e-10);
+  EXPECT_LT((dense_joseph.covariance() - sparse_standard.covariance()).norm(), 1e-9);
+  EXPECT_EQ(sparse_standard.covariance(), sparse_standard.covariance().transpose());
 }
 
 }  // namespace

@@ -25,6 +25,12 @@ class CovarianceOps {
   static void JosephUpdate(State& state, const Eigen::MatrixXd& K, const Eigen::MatrixXd& U,
                            const Eigen::MatrixXd& S, const Eigen::VectorXd& innovation);
 
+  /// Kalman update in the standard form P <- P - K U^T (then symmetrised), exact for the
+  /// optimal gain K = U S^-1 and half the O(n^2 m) cost of the Joseph form, at the price of its
+  /// guard against rounding in K.
+  static void StandardUpdate(State& state, const Eigen::MatrixXd& K, const Eigen::MatrixXd& U,
+                             const Eigen::VectorXd& innovation);
+
   /// P <- (P + P^T) / 2.
   static void Symmetrize(State& state);
 

@@ -2,12 +2,14 @@
 #include "mirage/methods/slam/slam_tracker.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <unordered_set>
 
 #include "mirage/estimation/covariance_ops.h"
 #include "mirage/estimation/gates/chi2_gate.h"
+#include "mirage/estimation/gates/rician_gate.h"
 #include "mirage/estimation/meas/va_range.h"
 #include "mirage/estimation/range_association.h"
 #include "mirage/geometry/visibility.h"
@@ -34,11 +36,37 @@ std::vector<std::string> Validate(const SlamOptions& options) {
   if (!(options.innovation_gate_chi2 >= 0.0) || !std::isfinite(options.innovation_gate_chi2)) {
     problems.push_back("innovation_gate_chi2 must be >= 0");
   }
+  if (!(options.amplitude_gate_probability >= 0.0 && options.amplitude_gate_probability <= 0.5)) {
+    problems.push_back("amplitude_gate_probability must be in [0, 0.5]");
+  }
   for (const auto& p : estimation::Validate(options.motion)) problems.push_back("motion." + p);
   for (const auto& p : mint::Validate(options.variance)) problems.push_back("variance." + p);
   for (const auto& p : Validate(options.discovery)) problems.push_back("discovery." + p);
   return problems;
 }
+
+namespace {
+
+// The agent's position and velocity with their marginal covariance, as a state of its own.
+estimation::State AgentMarginal(const estimation::State& state) {
+  estimation::StateLayout layout;
+  layout.Append({BlockKind::kPosition, 0}, 2);
+  layout.Append({BlockKind::kVelocity, 0}, 2);
+  const int p = state.layout().At({BlockKind::kPosition, 0}).offset;
+  const int v = state.layout().At({BlockKind::kVelocity, 0}).offset;
+  const std::array<int, 4> index{p, p + 1, v, v + 1};
+  Eigen::VectorXd mean(4);
+  Eigen::MatrixXd covariance(4, 4);
+  for (std::size_t i = 0; i < 4; ++i) {
+    mean(static_cast<Eigen::Index>(i)) = state.mean()(index[i]);
+    for (std::size_t j = 0; j < 4; ++j) {
+      covariance(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = state.covariance()(index[i], index[j]);
+    }
+  }
+  return estimation::State(std::move(layout), std::move(mean), std::move(covariance), state.t_s());
+}
+
+}  // namespace
 
 SlamTracker::SlamTracker(const SlamOptions& options, const geometry::VirtualAnchorSet& known_vas,
                          const geometry::FloorPlan& plan, double range_sigma_at_unit_sinr_m)
@@ -95,7 +123,10 @@ double SlamTracker::CurrentVariance(int va_id) const {
 
 bool SlamTracker::Filtered(std::size_t map_index) const {
   const MapVa& va = map_[map_index].va;
-  if (!options_.va_filter || !options_.variance.enabled || va.origin == MapVaOrigin::kAnchor) return false;
+  if (!options_.va_filter || !options_.variance.enabled) return false;
+  if (va.origin == MapVaOrigin::kAnchor && !(options_.va_filter_anchors && options_.va_filter_keeps_associating)) {
+    return false;
+  }
   // Only the VA's own estimate counts: the default 0.07 m would filter every new VA.
   const auto last = variance_.LastEstimatedVariance(va.id);
   return last && *last > options_.va_filter_sigma_m * options_.va_filter_sigma_m;
@@ -116,7 +147,7 @@ std::vector<std::size_t> SlamTracker::Candidates(int anchor_index, const Vec2& a
     if (va.anchor_index != anchor_index) continue;
     if (los_only && va.origin != MapVaOrigin::kAnchor) continue;
     if (va.origin != MapVaOrigin::kDiscovered && use_visibility && visible.count(va.id) == 0) continue;
-    if (Filtered(i)) continue;
+    if (Filtered(i) && !options_.va_filter_keeps_associating) continue;
     out.push_back(i);
   }
   return out;
@@ -151,16 +182,25 @@ std::vector<SlamTracker::Pairing> SlamTracker::Associate(const Reference& refere
       }
       gate_variance_m2.push_back(variance_m2 + CurrentVariance(map_[i].va.id));
     }
+    std::vector<std::optional<estimation::RicianLaw>> laws(candidates.size());
+    if (options_.amplitude_gate_probability > 0.0) {
+      for (std::size_t k = 0; k < candidates.size(); ++k) laws[k] = GateLaw(candidates[k], at_m, expected_m[k]);
+    }
     const auto n_expected = static_cast<Eigen::Index>(candidates.size());
     const auto n_measured = static_cast<Eigen::Index>(anchor.ranges.size());
     Eigen::MatrixXd distance(n_expected, n_measured);
     for (Eigen::Index r = 0; r < n_expected; ++r) {
       const auto k = static_cast<std::size_t>(r);
       for (Eigen::Index j = 0; j < n_measured; ++j) {
-        const double nu = anchor.ranges[static_cast<std::size_t>(j)].range_m - expected_m[k];
-        distance(r, j) = estimation::InsideChi2Gate(nu, gate_variance_m2[k], gate)
-                             ? std::abs(nu)
-                             : std::numeric_limits<double>::infinity();
+        const auto& z = anchor.ranges[static_cast<std::size_t>(j)];
+        const double nu = z.range_m - expected_m[k];
+        // The amplitude test (a series) only for pairs the range tests let through.
+        const bool range_plausible =
+            std::abs(nu) < options_.cutoff_m && estimation::InsideChi2Gate(nu, gate_variance_m2[k], gate);
+        const bool amplitude_plausible =
+            range_plausible && (!laws[k] || !z.amplitude ||
+                                estimation::RicianCdf(*z.amplitude, *laws[k]) >= options_.amplitude_gate_probability);
+        distance(r, j) = amplitude_plausible ? std::abs(nu) : std::numeric_limits<double>::infinity();
       }
     }
     const std::vector<int> assignment = estimation::AssociateWithCutoff(distance, options_.cutoff_m);
@@ -181,6 +221,22 @@ std::vector<SlamTracker::Pairing> SlamTracker::Associate(const Reference& refere
   return pairings;
 }
 
+std::optional<estimation::RicianLaw> SlamTracker::GateLaw(std::size_t map_index, const Vec2& at_m,
+                                                          double expected_range_m) const {
+  const Entry& e = map_[map_index];
+  if (!e.amplitude_law) return std::nullopt;
+  // Valid near where it was fitted: two window lengths, enough to bridge an obstacle's shadow.
+  if ((at_m - e.amplitude_law_at_m).norm() > 2.0 * options_.variance.window_max_m) return std::nullopt;
+  estimation::RicianLaw law = *e.amplitude_law;
+  // The specular amplitude falls as 1 / d (free-space path loss along the path, Lafer Eq. 2.3);
+  // the scatter floor is kept at K <= 100 (20 dB): a window of a strong LOS has almost no spread,
+  // and a fluctuation of a few percent must still pass; only a drop to a fraction of the
+  // amplitude (a blocked path, a diffuse peak) is rejected.
+  law.nu *= e.amplitude_law_range_m / std::max(expected_range_m, 0.1);
+  law.scatter_power = std::max(law.scatter_power, law.nu * law.nu / 100.0);
+  return law;
+}
+
 void SlamTracker::AddToState(std::size_t map_index) {
   // A prior VA is independent of everything until its first range: adding it now with its prior
   // covariance and no correlation equals carrying it in the state from the start.
@@ -195,7 +251,9 @@ estimation::UpdateResult SlamTracker::Update(estimation::State& state, const std
   const Vec2 prior_m = state.Mean({BlockKind::kPosition, 0});
   const int position_offset = state.layout().At({BlockKind::kPosition, 0}).offset;
   const auto m = static_cast<Eigen::Index>(pairings.size());
-  Eigen::MatrixXd H = Eigen::MatrixXd::Zero(m, state.dimension());  // Leitinger Eq. (16), current rows
+  // Leitinger Eq. (16), current rows; sparse: each row has the agent's and one VA's columns.
+  std::vector<Eigen::Triplet<double>> entries;
+  entries.reserve(static_cast<std::size_t>(4 * m));
   Eigen::VectorXd innovation(m);
   Eigen::MatrixXd R = Eigen::MatrixXd::Zero(m, m);
   Eigen::Index rows = 0;
@@ -206,13 +264,19 @@ estimation::UpdateResult SlamTracker::Update(estimation::State& state, const std
     const Vec2 va_m = block ? Vec2(state.Mean(key)) : map_[p.map_index].prior_m;
     const auto prediction = estimation::PredictVaRange(prior_m, va_m);
     if (!prediction) continue;
-    H.block<1, 2>(rows, position_offset) = prediction->J_range_p;
-    if (block) H.block<1, 2>(rows, block->offset) = prediction->J_range_va;
+    for (int c = 0; c < 2; ++c) {
+      entries.emplace_back(rows, position_offset + c, prediction->J_range_p(c));
+      if (block) entries.emplace_back(rows, block->offset + c, prediction->J_range_va(c));
+    }
     innovation(rows) = p.measurement->range_m - prediction->range_m;
     R(rows, rows) = variances_m2[k];
     ++rows;
   }
-  return estimation::EkfUpdate(state, H.topRows(rows), innovation.head(rows), R.topLeftCorner(rows, rows));
+  Eigen::SparseMatrix<double, Eigen::RowMajor> H(rows, state.dimension());
+  H.setFromTriplets(entries.begin(), entries.end());
+  return estimation::EkfUpdate(
+      state, H, innovation.head(rows), R.topLeftCorner(rows, rows),
+      options_.joseph_update ? estimation::CovarianceForm::kJoseph : estimation::CovarianceForm::kStandard);
 }
 
 SlamStepResult SlamTracker::Step(double t_s, std::span<const core::AnchorRanges> measurements) {
@@ -222,11 +286,14 @@ SlamStepResult SlamTracker::Step(double t_s, std::span<const core::AnchorRanges>
 
   if (options_.reassociate) {
     // Stage 1 (as in MINT): the anchors' LOS ranges alone give the reference for stage 2.
-    const auto los = Associate(reference, measurements, true, 0.0);
+    auto los = Associate(reference, measurements, true, 0.0);
+    std::erase_if(los, [&](const Pairing& p) { return Filtered(p.map_index); });
     if (!los.empty()) {
       std::vector<double> variances;
       for (const auto& p : los) variances.push_back(CurrentVariance(map_[p.map_index].va.id));
-      estimation::State trial = state_;
+      // The anchors are not in the state, so the LOS rows touch only the agent's columns and
+      // updating the agent's marginal alone is exact, at a fraction of the cost of a copy.
+      estimation::State trial = AgentMarginal(state_);
       if (Update(trial, los, variances).applied) {
         reference = {trial.Mean({BlockKind::kPosition, 0}), trial.Covariance({BlockKind::kPosition, 0})};
       }
@@ -236,6 +303,7 @@ SlamStepResult SlamTracker::Step(double t_s, std::span<const core::AnchorRanges>
   const std::vector<Pairing> pairings = Associate(reference, measurements, false, options_.innovation_gate_chi2);
 
   std::vector<double> variances;
+  std::vector<Pairing> updating;  // the pairings of VAs the filter lets through
   for (const auto& p : pairings) {
     const MapVa& va = map_[p.map_index].va;
     if (va.origin == MapVaOrigin::kPrior && !InState(p.map_index)) AddToState(p.map_index);
@@ -249,14 +317,26 @@ SlamStepResult SlamTracker::Step(double t_s, std::span<const core::AnchorRanges>
       const mint::VaVariance v = variance_.Variance(va.id, !p.overlapped && amplitude.has_value());
       a.variance_m2 = v.variance_m2;
       a.sinr = v.sinr;
+      if (v.sinr) {
+        if (const auto m = variance_.Moments(va.id, reference.position_m)) {
+          Entry& e = map_[p.map_index];
+          e.amplitude_law = estimation::RicianFromMoments(m->mean, m->variance);
+          e.amplitude_law_at_m = reference.position_m;
+          e.amplitude_law_range_m = (VaPosition(p.map_index) - reference.position_m).norm();
+        }
+      }
     } else {
       a.variance_m2 = options_.range_sigma_m * options_.range_sigma_m;
     }
+    // Judged after this step's sample entered the window: a VA leaves (and rejoins) the update
+    // as soon as its own estimate says so.
+    if (Filtered(p.map_index)) continue;
     variances.push_back(a.variance_m2);
+    updating.push_back(p);
     result.associations.push_back(a);
     ++map_[p.map_index].va.associations;
   }
-  result.update = Update(state_, pairings, variances);
+  result.update = Update(state_, updating, variances);
 
   // Discovery with the ranges nobody took, from the posterior agent position.
   const Vec2 agent_m = state_.Mean({BlockKind::kPosition, 0});

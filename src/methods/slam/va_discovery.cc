@@ -8,6 +8,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "mirage/estimation/init/range_bancroft.h"
+#include "mirage/estimation/init/range_point_fit.h"
 #include "mirage/estimation/range_association.h"
 
 namespace mirage::methods::slam {
@@ -35,6 +36,14 @@ std::vector<std::string> Validate(const DiscoveryOptions& o) {
   positive(o.merge_hypotheses_m, "merge_hypotheses_m");
   at_least(o.candidate_timeout_steps, 1, "candidate_timeout_steps");
   at_least(o.candidate_max_age_steps, 1, "candidate_max_age_steps");
+  positive(o.verify_fit_rms_m, "verify_fit_rms_m");
+  if (!(o.verify_min_inlier_fraction > 0.0 && o.verify_min_inlier_fraction <= 1.0)) {
+    problems.push_back("verify_min_inlier_fraction must be in (0, 1]");
+  }
+  if (!(o.verify_mirror_ratio >= 1.0) || !std::isfinite(o.verify_mirror_ratio)) {
+    problems.push_back("verify_mirror_ratio must be >= 1");
+  }
+  positive(o.verify_max_sigma_m, "verify_max_sigma_m");
   if (!(o.duplicate_radius_m >= 0.0) || !std::isfinite(o.duplicate_radius_m)) {
     problems.push_back("duplicate_radius_m must be >= 0 m");
   }
@@ -138,7 +147,69 @@ double CrossExtent(const std::vector<DiscoverySample>& samples) {
   return hi - lo;
 }
 
+// RMS of the residuals of q over all samples, each capped at cap_m: a robust score that an
+// outlier cannot dominate and a wrong point cannot hide by rejecting ranges.
+double TruncatedRms(const Vec2& q, const std::vector<DiscoverySample>& samples, double cap_m) {
+  double sum_m2 = 0.0;
+  for (const auto& s : samples) {
+    const double r = std::min(std::abs((q - s.agent_m).norm() - s.range_m), cap_m);
+    sum_m2 += r * r;
+  }
+  return std::sqrt(sum_m2 / static_cast<double>(std::max<std::size_t>(samples.size(), 1)));
+}
+
 }  // namespace
+
+VaDiscovery::Verdict VaDiscovery::Verify(const Candidate& candidate) const {
+  constexpr double kTruncation_m = 0.1;  // residual cap of the mirror comparison
+  std::vector<Vec2> positions;
+  std::vector<double> ranges;
+  for (const auto& s : candidate.samples) {
+    positions.push_back(s.agent_m);
+    ranges.push_back(s.range_m);
+  }
+  // Starts: both RLS hypotheses (alive or not: the dismissed one is the mirror to refute) and
+  // the range-Bancroft pair of all ranges (unique once the positions span 2-D).
+  std::vector<Vec2> starts = {candidate.hypotheses[0].position_m, candidate.hypotheses[1].position_m};
+  if (const auto pair = estimation::RangeBancroft(positions, ranges)) {
+    starts.push_back(pair->positions_m[0]);
+    if (pair->solutions == 2) starts.push_back(pair->positions_m[1]);
+  }
+  std::vector<estimation::RangePointFit> fits;
+  std::vector<double> scores;
+  for (const Vec2& start : starts) {
+    if (const auto fit = estimation::FitPointToRanges(positions, ranges, start)) {
+      fits.push_back(*fit);
+      scores.push_back(TruncatedRms(fit->position_m, candidate.samples, kTruncation_m));
+    }
+  }
+  Verdict verdict;
+  if (fits.empty()) return verdict;  // kWait
+  const auto best = static_cast<std::size_t>(std::min_element(scores.begin(), scores.end()) - scores.begin());
+  const auto& fit = fits[best];
+  const double inlier_fraction = static_cast<double>(fit.inliers) / static_cast<double>(candidate.samples.size());
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(fit.covariance_m2);
+  const double sigma_m = std::sqrt(std::max(eig.eigenvalues()(1), 0.0));
+  // The best other solution: the lowest score among fits that ended elsewhere.
+  double mirror_score = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < fits.size(); ++i) {
+    if ((fits[i].position_m - fit.position_m).norm() > options_.merge_hypotheses_m) {
+      mirror_score = std::min(mirror_score, scores[i]);
+    }
+  }
+  if (inlier_fraction < 0.5) {
+    verdict.kind = Verdict::kReject;  // no single point explains most of these ranges
+    return verdict;
+  }
+  if (fit.rms_m > options_.verify_fit_rms_m || inlier_fraction < options_.verify_min_inlier_fraction ||
+      sigma_m > options_.verify_max_sigma_m || mirror_score < options_.verify_mirror_ratio * scores[best]) {
+    return verdict;  // kWait: more ranges, a longer turn
+  }
+  verdict.kind = Verdict::kPromote;
+  verdict.position_m = fit.position_m;
+  verdict.covariance_m2 = fit.covariance_m2;
+  return verdict;
+}
 
 std::vector<DiscoveredVa> VaDiscovery::Promote(int step, int anchor_index) {
   std::vector<DiscoveredVa> promoted;
@@ -159,13 +230,17 @@ std::vector<DiscoveredVa> VaDiscovery::Promote(int step, int anchor_index) {
     const int alive = (h[0].alive ? 1 : 0) + (h[1].alive ? 1 : 0);
     const bool timed_out = step - candidate.last_support_step > options_.candidate_timeout_steps;
     const bool too_old = step - candidate.created_step > options_.candidate_max_age_steps;
-    if (alive == 1 && static_cast<int>(candidate.samples.size()) >= options_.min_measurements && !timed_out &&
+    if (alive == 0 || timed_out || too_old) continue;  // dropped
+    // Verify only at steps with new support: the verdict cannot change otherwise.
+    if (candidate.last_support_step == step && static_cast<int>(candidate.samples.size()) >= options_.min_measurements &&
         CrossExtent(candidate.samples) >= options_.min_turn_m) {
-      const Hypothesis& survivor = h[0].alive ? h[0] : h[1];
-      promoted.push_back({anchor_index, survivor.position_m, survivor.covariance_m2, std::move(candidate.samples)});
-      continue;
+      const Verdict verdict = Verify(candidate);
+      if (verdict.kind == Verdict::kPromote) {
+        promoted.push_back({anchor_index, verdict.position_m, verdict.covariance_m2, std::move(candidate.samples)});
+        continue;
+      }
+      if (verdict.kind == Verdict::kReject) continue;
     }
-    if (alive == 0 || timed_out || (too_old && alive == 2)) continue;  // dropped
     kept.push_back(std::move(candidate));
   }
   candidates_ = std::move(kept);

@@ -103,6 +103,50 @@ TEST(SlamTracker, WithoutDiscoveryTheMapHoldsOnlyTheAnchors) {
   EXPECT_EQ(out.max_state_vas, 0);
 }
 
+// Whether the tracker associates a weak range near anchor 0's LOS at step 60 of the loop, after
+// 59 steps of normal ranges (the amplitude window forms after about 18 steps of 5 cm).
+bool AssociatesAWeakLosStandIn(double amplitude_gate_probability) {
+  const auto plan = mint::testing::EmptySquareRoom();
+  const auto vas = mint::testing::SquareRoomVas(plan, 1);
+  SlamOptions options;
+  options.prior_max_order = 1;
+  options.discovery.enabled = false;
+  options.amplitude_gate_probability = amplitude_gate_probability;
+  SlamTracker tracker(options, vas, plan, kSigma1M);
+  const auto samples = Loop();
+  tracker.Initialize(samples.front().t_s, samples.front().position_m);
+  core::Rng rng(5, 0);
+  int los_id = -1;
+  for (const auto& va : vas.all()) {
+    if (va.order == 0 && va.anchor_index == 0) los_id = va.id;
+  }
+  for (std::size_t k = 1; k <= 60; ++k) {
+    auto ranges = mint::testing::MeasureRanges(vas, plan, samples[k].position_m, MeasurementModel{}, rng);
+    if (k == 60) {
+      // The LOS is blocked: in its place a diffuse-multipath peak 2 cm later at a tenth of the
+      // amplitude - inside every range gate.
+      const double los_m = (vas[los_id].position_m - samples[k].position_m).norm();
+      auto& list = ranges[0].ranges;
+      const auto los = std::min_element(list.begin(), list.end(), [&](const auto& a, const auto& b) {
+        return std::abs(a.range_m - los_m) < std::abs(b.range_m - los_m);
+      });
+      los->range_m = los_m + 0.02;
+      los->amplitude = 0.1 * *los->amplitude;
+    }
+    const auto step = tracker.Step(samples[k].t_s, ranges);
+    if (k == 60) {
+      return std::any_of(step.associations.begin(), step.associations.end(),
+                         [&](const SlamAssociation& a) { return a.va_id == los_id; });
+    }
+  }
+  return false;
+}
+
+TEST(SlamTracker, AmplitudeGateRejectsAWeakStandInForABlockedLos) {
+  EXPECT_FALSE(AssociatesAWeakLosStandIn(1e-3));
+  EXPECT_TRUE(AssociatesAWeakLosStandIn(0.0));  // without the gate the range test alone accepts it
+}
+
 TEST(SlamTracker, ValidateNamesTheBadOption) {
   SlamOptions options;
   options.cutoff_m = 0.0;

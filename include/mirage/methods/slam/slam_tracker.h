@@ -36,6 +36,7 @@
 
 #include "mirage/core/measurements.h"
 #include "mirage/estimation/ekf_update.h"
+#include "mirage/estimation/gates/rician_gate.h"
 #include "mirage/estimation/motion/constant_velocity.h"
 #include "mirage/estimation/state.h"
 #include "mirage/geometry/floor_plan.h"
@@ -75,6 +76,25 @@ struct SlamOptions {
   bool va_filter = true;
   /// sigma_d,max (m), > 0: 6.23 cm, the CRLB at SINR 0 dB (Leitinger Sec. IV).
   double va_filter_sigma_m = 0.0623;
+  /// mirage: a filtered VA still takes part in the association, so its range variance keeps
+  /// being estimated from the ranges it claims (and they go to no other VA and not to the
+  /// discovery), but those ranges do not update the state. A VA whose ranges become reliable
+  /// again (the agent left the obstacle's shadow) comes back; with false (the paper) a filtered
+  /// VA never gets another range and stays out for good.
+  bool va_filter_keeps_associating = true;
+  /// mirage: apply the VA filter to the physical anchors' LOS too, i.e. detect a blocked LOS
+  /// by its range variance instead of trusting it. Only with va_filter_keeps_associating (else a
+  /// blocked LOS would be lost for good).
+  bool va_filter_anchors = true;
+  /// Amplitude gate (mirage; 0 = off): a range is not associated to a VA if its amplitude is
+  /// this improbable, P(|alpha| <= measured), under the Rician law fitted to the VA's amplitude
+  /// window (the variance estimator's, Lafer Eq. 3.27) when the VA was last estimated. A blocked path's range is
+  /// then a weak diffuse-multipath peak, which passes any range gate but not this one.
+  double amplitude_gate_probability = 1e-3;
+  /// Covariance update of the EKF (mirage): the standard form P - K H P halves the O(n^2 m)
+  /// cost that dominates a step with tens of VAs in the state (bench/methods/slam_step_bench.cc
+  /// measures both); the Joseph form as in MINT is the alternative.
+  bool joseph_update = false;
   /// Motion model of the agent.
   estimation::ConstantVelocityOptions motion;
   /// Online variance estimation per VA (Lafer Sec. 3.6 / Leitinger Sec. III-C).
@@ -175,10 +195,19 @@ class SlamTracker {
   estimation::UpdateResult Update(estimation::State& state, const std::vector<Pairing>& pairings,
                                   const std::vector<double>& variances_m2) const;
   void AddToState(std::size_t map_index);
+  // The amplitude gate's law for a VA seen from at_m at the expected range, if any.
+  [[nodiscard]] std::optional<estimation::RicianLaw> GateLaw(std::size_t map_index, const Vec2& at_m,
+                                                             double expected_range_m) const;
 
   struct Entry {
     MapVa va;
     Vec2 prior_m = Vec2::Zero();
+    /// The Rician law of the VA's amplitudes at its last moment-based estimate: the amplitude
+    /// gate's reference, kept while the VA is not seen (the window itself moves with the agent
+    /// and expires in an obstacle's shadow, exactly when the gate is needed).
+    std::optional<estimation::RicianLaw> amplitude_law;
+    Vec2 amplitude_law_at_m = Vec2::Zero();  ///< agent position of that estimate
+    double amplitude_law_range_m = 0.0;       ///< expected range there
   };
 
   SlamOptions options_;

@@ -5,9 +5,13 @@
 //   A. association to the existing candidate pairs (cut-off assignment on the predicted ranges
 //      of the pair's closer hypothesis) and  B. a linearised RLS update of each hypothesis the
 //      range supports (Lafer Eq. 4.11-4.14);
-//   C. promotion of a resolved candidate: once one mirror hypothesis has stopped explaining the
-//      ranges (the agent turned) and the survivor has enough measurements, it is returned to
-//      the tracker, which puts it into the state;
+//   C. promotion of a resolved candidate: once the agent positions of its ranges span two
+//      dimensions (the agent turned) and it has enough measurements, a batch least-squares fit
+//      over all its ranges from both mirror hypotheses must find one point that explains them
+//      (small residual, few outliers, small covariance) and leave the mirror clearly worse;
+//      that point is returned to the tracker, which puts it into the state (mirage choice: the
+//      thesis promotes when the RLS association drops the wrong hypothesis, which on diffuse
+//      multipath promoted many wrong points);
 //   D. the remaining ranges extend groups of similar ranges from consecutive steps; a group long
 //      enough, and walked over a long enough baseline, gives a new candidate pair by the
 //      range-Bancroft algorithm (two mirror solutions).
@@ -58,6 +62,20 @@ struct DiscoveryOptions {
   /// principal direction (m), >= 0: ranges from a straight walk cannot tell a VA from its mirror
   /// image about the path (Leitinger footnote 4), however well one hypothesis happens to fit.
   double min_turn_m = 0.2;
+  /// Promotion check (mirage): largest RMS residual of the batch fit over the candidate's ranges
+  /// (outliers excluded) (m), > 0. Range noise (1-2 cm) and the agent's own error (about 3 cm
+  /// with only the anchors) add to sqrt(2^2 + 3^2) = 3.6 cm; 4.5 cm leaves 25 % margin.
+  double verify_fit_rms_m = 0.045;
+  /// Promotion check: smallest fraction of the candidate's ranges within the fit's outlier gate,
+  /// in (0, 1]. A few ranges of another path may be chained in; many mean no single point.
+  double verify_min_inlier_fraction = 0.85;
+  /// Promotion check: the mirror solution's truncated RMS residual (residuals capped at 0.1 m)
+  /// must be at least this many times the winner's, >= 1; otherwise the pair is still ambiguous.
+  /// On the seminar-room signals true VAs reach 1.5 after about 0.5 m of walking across.
+  double verify_mirror_ratio = 1.5;
+  /// Promotion check: largest standard deviation of the fitted point along its worst direction
+  /// (m), > 0. 5 cm, the accuracy the agent is tracked to: a VA known worse would pull it.
+  double verify_max_sigma_m = 0.05;
   /// Consecutive steps in which a hypothesis failed the cut-off while its sibling passed, after
   /// which it is dismissed (>= 1) [GAP: the thesis promotes when the wrong hypothesis "is no
   /// longer associated"].
@@ -109,7 +127,7 @@ struct Candidate {
 struct DiscoveredVa {
   int anchor_index = 0;
   Vec2 position_m = Vec2::Zero();
-  Eigen::Matrix2d covariance_m2 = Eigen::Matrix2d::Identity();  ///< the RLS covariance
+  Eigen::Matrix2d covariance_m2 = Eigen::Matrix2d::Identity();  ///< the batch fit's covariance
   std::vector<DiscoverySample> samples;
 };
 
@@ -142,6 +160,13 @@ class VaDiscovery {
                                      std::span<const core::RangeMeasurement> ranges, double cutoff_m);
   // Stage C.
   std::vector<DiscoveredVa> Promote(int step, int anchor_index);
+  // The batch check of stage C.
+  struct Verdict {
+    enum Kind { kWait, kPromote, kReject } kind = kWait;
+    Vec2 position_m = Vec2::Zero();
+    Eigen::Matrix2d covariance_m2 = Eigen::Matrix2d::Identity();
+  };
+  [[nodiscard]] Verdict Verify(const Candidate& candidate) const;
   // Stage D.
   void UpdateGroups(int step, int anchor_index, const Vec2& agent_m, std::span<const core::RangeMeasurement> ranges,
                     const std::vector<bool>& used, std::span<const Vec2> known_vas_m);

@@ -1,0 +1,45 @@
+// SPDX-License-Identifier: MIT
+// Batch least-squares fit of a point q to ranges r_i measured from known positions a_i,
+// min sum_i (|q - a_i| - r_i)^2, by Gauss-Newton from a start point, with one round of outlier
+// rejection. Used to verify a VA candidate over all of its ranges before it enters the SLAM
+// state: once the positions span two dimensions (the agent turned) the fit from the wrong mirror
+// hypothesis leaves large residuals, which the RLS-tracked pair cannot show reliably
+// (mirage choice; the thesis resolves the pair by its RLS association alone, Lafer Sec. 4.2.2).
+#pragma once
+
+#include <optional>
+#include <span>
+
+#include <Eigen/Core>
+
+#include "mirage/core/types.h"
+
+namespace mirage::estimation {
+
+/// Result of the fit.
+struct RangePointFit {
+  Vec2 position_m = Vec2::Zero();
+  /// sigma^2 (J^T J)^-1 over the inliers with sigma = max(rms, range_sigma_floor_m) (m^2).
+  Eigen::Matrix2d covariance_m2 = Eigen::Matrix2d::Identity();
+  double rms_m = 0.0;              ///< RMS residual over the inliers (m)
+  int inliers = 0;                 ///< ranges within the outlier gate of the final fit
+};
+
+/// Options of the fit.
+struct RangePointFitOptions {
+  int max_iterations = 10;
+  /// Ranges with |residual| above max(gate_sigmas * rms, min_gate_m) after the first fit are
+  /// left out of the second (m).
+  double gate_sigmas = 3.0;
+  double min_gate_m = 0.05;
+  /// Floor of the residual std used for the covariance (m): a lucky small rms must not make the
+  /// point overconfident.
+  double range_sigma_floor_m = 0.02;
+};
+
+/// Fits q from `start_m`. Returns std::nullopt for fewer than 3 ranges, non-finite input, or a
+/// singular geometry (J^T J not invertible: all positions on a line through q).
+std::optional<RangePointFit> FitPointToRanges(std::span<const Vec2> positions_m, std::span<const double> ranges_m,
+                                              const Vec2& start_m, const RangePointFitOptions& options = {});
+
+}  // namespace mirage::estimation
