@@ -209,6 +209,7 @@ methods::slam::DiscoveryOptions ReadDiscovery(YamlMap m) {
   o.candidate_timeout_steps = m.Integer("candidate_timeout_steps", o.candidate_timeout_steps, 1, 1000000);
   o.candidate_max_age_steps = m.Integer("candidate_max_age_steps", o.candidate_max_age_steps, 1, 1000000);
   o.duplicate_radius_m = m.NumberInRange("duplicate_radius_m", o.duplicate_radius_m, 0.0, kHuge, "m");
+  o.verify = m.Boolean("verify", o.verify);
   o.verify_fit_rms_m = m.NumberInRange("verify_fit_rms_m", o.verify_fit_rms_m, 1e-9, kHuge, "m");
   o.verify_min_inlier_fraction =
       m.NumberInRange("verify_min_inlier_fraction", o.verify_min_inlier_fraction, 1e-9, 1.0, "");

@@ -231,9 +231,19 @@ std::vector<DiscoveredVa> VaDiscovery::Promote(int step, int anchor_index) {
     const bool timed_out = step - candidate.last_support_step > options_.candidate_timeout_steps;
     const bool too_old = step - candidate.created_step > options_.candidate_max_age_steps;
     if (alive == 0 || timed_out || too_old) continue;  // dropped
+    const bool ready = static_cast<int>(candidate.samples.size()) >= options_.min_measurements &&
+                       CrossExtent(candidate.samples) >= options_.min_turn_m;
+    if (!options_.verify) {
+      if (alive == 1 && ready) {  // the thesis: the RLS survivor as it stands
+        const Hypothesis& survivor = h[0].alive ? h[0] : h[1];
+        promoted.push_back({anchor_index, survivor.position_m, survivor.covariance_m2, std::move(candidate.samples)});
+        continue;
+      }
+      kept.push_back(std::move(candidate));
+      continue;
+    }
     // Verify only at steps with new support: the verdict cannot change otherwise.
-    if (candidate.last_support_step == step && static_cast<int>(candidate.samples.size()) >= options_.min_measurements &&
-        CrossExtent(candidate.samples) >= options_.min_turn_m) {
+    if (candidate.last_support_step == step && ready) {
       const Verdict verdict = Verify(candidate);
       if (verdict.kind == Verdict::kPromote) {
         promoted.push_back({anchor_index, verdict.position_m, verdict.covariance_m2, std::move(candidate.samples)});

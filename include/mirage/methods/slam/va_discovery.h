@@ -62,6 +62,10 @@ struct DiscoveryOptions {
   /// principal direction (m), >= 0: ranges from a straight walk cannot tell a VA from its mirror
   /// image about the path (Leitinger footnote 4), however well one hypothesis happens to fit.
   double min_turn_m = 0.2;
+  /// Promotion by the batch check below (mirage). false: the thesis's rule, promotion as soon
+  /// as the RLS association has dismissed one hypothesis (resolve_misses) and the survivor has
+  /// min_measurements ranges and min_turn_m of turn.
+  bool verify = true;
   /// Promotion check (mirage): largest RMS residual of the batch fit over the candidate's ranges
   /// (outliers excluded) (m), > 0. Range noise (1-2 cm) and the agent's own error (about 3 cm
   /// with only the anchors) add to sqrt(2^2 + 3^2) = 3.6 cm; 4.5 cm leaves 25 % margin.
