@@ -34,6 +34,7 @@ core::AnchorRanges RangeLevelSimulator::Simulate(int anchor_index, std::span<con
   const double window_end_s = channel.window_start_s + channel.window_length_s;
   const double sigma1_m = synthesizer_->pulse().range_sigma_at_unit_sinr_m();
   const double min_sinr = core::DbToPowerRatio(options_.min_sinr_db);
+  if (truth != nullptr) truth->clear();
 
   struct Detection {
     double true_range_m;

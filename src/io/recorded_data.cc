@@ -10,6 +10,7 @@
 
 #include "mirage/io/csv_reader.h"
 #include "mirage/io/input_error.h"
+#include "mirage/io/output_file.h"
 
 namespace mirage::io {
 namespace {
@@ -23,17 +24,6 @@ std::string ReadFile(const std::string& path) {
   text << in.rdbuf();
   if (in.bad()) throw InputError(path + ": read failed");
   return text.str();
-}
-
-std::ofstream OpenForWriting(const std::string& path) {
-  std::ofstream out(path);
-  if (!out) throw InputError(path + ": cannot open for writing");
-  return out;
-}
-
-void Close(std::ofstream& out, const std::string& path) {
-  out.flush();
-  if (!out) throw InputError(path + ": write failed");
 }
 
 }  // namespace
@@ -133,7 +123,7 @@ void WriteRecording(const std::string& dir, const pipeline::Recording& recording
       if (with_z) out << fmt::format(",{}", recording.anchor_heights_m[a].value_or(0.0));
       out << "\n";
     }
-    Close(out, path);
+    FinishWriting(out, path);
   }
   {
     const std::string path = dir + "/ranges.csv";
@@ -148,14 +138,14 @@ void WriteRecording(const std::string& dir, const pipeline::Recording& recording
         }
       }
     }
-    Close(out, path);
+    FinishWriting(out, path);
   }
   if (recording.has_truth()) {
     const std::string path = dir + "/truth.csv";
     auto out = OpenForWriting(path);
     out << "t_s,x_m,y_m\n";
     for (const auto& s : recording.truth) out << fmt::format("{},{},{}\n", s.t_s, s.position_m.x(), s.position_m.y());
-    Close(out, path);
+    FinishWriting(out, path);
   }
 }
 

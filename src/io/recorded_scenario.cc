@@ -1,11 +1,9 @@
 // SPDX-License-Identifier: MIT
 #include "mirage/io/recorded_scenario.h"
 
-#include <fstream>
-
 #include <yaml-cpp/yaml.h>
 
-#include "mirage/io/input_error.h"
+#include "mirage/io/output_file.h"
 #include "mirage/io/yaml_reader.h"
 
 namespace mirage::io {
@@ -35,12 +33,10 @@ void WriteRecordedScenario(const std::string& scenario_path, const std::string& 
   YAML::Emitter emitter;
   emitter << out;
   const std::string path = dir + "/scenario.yaml";
-  std::ofstream file(path);
-  if (!file) throw InputError(path + ": cannot open for writing");
+  auto file = OpenForWriting(path);
   file << "# Written by `mirage simulate " << scenario_path << "`: runs the recording in this directory.\n"
        << emitter.c_str() << "\n";
-  file.flush();
-  if (!file) throw InputError(path + ": write failed");
+  FinishWriting(file, path);
 }
 
 }  // namespace mirage::io

@@ -2,13 +2,12 @@
 #include "mirage/io/report.h"
 
 #include <cmath>
-#include <filesystem>
 #include <fstream>
 
 #include <fmt/format.h>
 
 #include "mirage/core/constants.h"
-#include "mirage/io/input_error.h"
+#include "mirage/io/output_file.h"
 #include "mirage/pipeline/tracker_adapter.h"
 
 namespace mirage::io {
@@ -70,20 +69,6 @@ json SinrJson(const std::map<std::string, pipeline::SinrStats>& stats) {
     j[key] = {{"count", s.count}, {"mean", s.mean_db}, {"p10", s.p10_db}, {"p50", s.p50_db}, {"p90", s.p90_db}};
   }
   return j;
-}
-
-// Throws when a stream failed (disk full, ...) so that a truncated file never passes silently.
-void CheckWritten(const std::ofstream& out, const std::string& path) {
-  if (!out) throw InputError(path + ": write failed");
-}
-
-std::ofstream OpenForWriting(const std::string& path) {
-  const auto parent = std::filesystem::path(path).parent_path();
-  std::error_code ec;
-  if (!parent.empty()) std::filesystem::create_directories(parent, ec);
-  std::ofstream out(path);
-  if (!out) throw InputError(path + ": cannot open for writing");
-  return out;
 }
 
 }  // namespace
@@ -202,8 +187,7 @@ std::string FormatResultTable(const Scenario& scenario, const pipeline::MintSumm
 void WriteJson(const std::string& path, const nlohmann::json& json) {
   auto out = OpenForWriting(path);
   out << json.dump(2) << "\n";
-  out.flush();
-  CheckWritten(out, path);
+  FinishWriting(out, path);
 }
 
 void WriteCsv(const std::string& dir, const Scenario& scenario, const pipeline::MintExperimentResult& result) {
@@ -227,8 +211,7 @@ void WriteCsv(const std::string& dir, const Scenario& scenario, const pipeline::
                            s.peb_m ? fmt::format("{:.5f}", *s.peb_m) : "", s.associations, s.relocalized ? 1 : 0);
       }
     }
-    out.flush();
-    CheckWritten(out, dir + "/tracks.csv");
+    FinishWriting(out, dir + "/tracks.csv");
   }
   {
     auto out = OpenForWriting(dir + "/runs.csv");
@@ -242,8 +225,7 @@ void WriteCsv(const std::string& dir, const Scenario& scenario, const pipeline::
                          run.offset_m.y(), run.steps.size(), known ? fmt::format("{:.5f}", e.rmse) : "",
                          known ? fmt::format("{:.5f}", e.p90) : "", known ? (run.diverged ? "1" : "0") : "");
     }
-    out.flush();
-    CheckWritten(out, dir + "/runs.csv");
+    FinishWriting(out, dir + "/runs.csv");
   }
   {
     // The per-path ground truth of the first run of each trajectory (all runs would be tens of
@@ -261,8 +243,7 @@ void WriteCsv(const std::string& dir, const Scenario& scenario, const pipeline::
                            p.true_sinr_db, p.estimated_sinr_db ? fmt::format("{:.2f}", *p.estimated_sinr_db) : "");
       }
     }
-    out.flush();
-    CheckWritten(out, dir + "/paths.csv");
+    FinishWriting(out, dir + "/paths.csv");
   }
   if (config.method == pipeline::Method::kSlam) {
     // The SLAM map at the end of every run, with the match to the true VAs.
@@ -282,8 +263,7 @@ void WriteCsv(const std::string& dir, const Scenario& scenario, const pipeline::
                            va.associations, va.discovered_step, va.filtered ? 1 : 0);
       }
     }
-    out.flush();
-    CheckWritten(out, dir + "/map.csv");
+    FinishWriting(out, dir + "/map.csv");
   }
   {
     auto out = OpenForWriting(dir + "/virtual_anchors.csv");
@@ -298,8 +278,7 @@ void WriteCsv(const std::string& dir, const Scenario& scenario, const pipeline::
                          config.anchor_ids[static_cast<std::size_t>(va.anchor_index)], va.order, va.position_m.x(),
                          va.position_m.y(), walls, va.reflection_gain);
     }
-    out.flush();
-    CheckWritten(out, dir + "/virtual_anchors.csv");
+    FinishWriting(out, dir + "/virtual_anchors.csv");
   }
 }
 

@@ -52,7 +52,6 @@ const std::vector<std::vector<channel::PathTruth>>& RunSimulator::Simulate(std::
                                                      position_m, config.channel.pulse.carrier_hz);
     // The path-loss reference of the SNR; 1 cm keeps a tag on top of an anchor finite.
     const double los_distance_m = std::max((position_m - config.anchors_m[a]).norm(), 0.01);
-    truths_[a].clear();  // the range-level simulator appends
     if (context_.range_level) {
       range_level_.push_back(context_.range_level->Simulate(static_cast<int>(a), paths, los_distance_m, ranges_rng_, &truths_[a]));
     } else {

@@ -47,7 +47,8 @@ class RangeLevelSimulator {
   RangeLevelSimulator(const RangeLevelOptions& options, const CirSynthesizer& synthesizer);
 
   /// The unlabeled ranges of one anchor at one step (sorted by range; consumers must not rely on
-  /// any order). truth, if given, receives every path inside the window with its true SINR.
+  /// any order). truth, if given, is replaced by the paths inside the window with their true SINR
+  /// (as CirSynthesizer::Synthesize returns them).
   core::AnchorRanges Simulate(int anchor_index, std::span<const SpecularPath> paths, double los_distance_m,
                               core::Rng& rng, std::vector<PathTruth>* truth = nullptr) const;
 

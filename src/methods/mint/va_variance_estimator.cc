@@ -96,11 +96,11 @@ VaVariance VaVarianceEstimator::Variance(int va_id, bool associated_now) {
   const auto moments = associated_now && !history.samples.empty()
                            ? Moments(va_id, history.samples.back().agent_m)
                            : std::nullopt;
-  if (!moments) return {FallbackVariance(history), std::nullopt};
+  if (!moments) return {FallbackVariance(history), std::nullopt, std::nullopt};
   const double m1 = moments->mean;
   const double m2 = moments->variance;
 
-  VaVariance out{max_variance, 0.0};
+  VaVariance out{max_variance, 0.0, moments};
   const double discriminant = m1 * m1 - m2;
   if (discriminant > 0.0) {
     // Eq. (3.26); m2 >= 0 makes the denominator >= 0, and 0 only for constant amplitudes.

@@ -317,13 +317,11 @@ SlamStepResult SlamTracker::Step(double t_s, std::span<const core::AnchorRanges>
       const mint::VaVariance v = variance_.Variance(va.id, !p.overlapped && amplitude.has_value());
       a.variance_m2 = v.variance_m2;
       a.sinr = v.sinr;
-      if (v.sinr) {
-        if (const auto m = variance_.Moments(va.id, reference.position_m)) {
-          Entry& e = map_[p.map_index];
-          e.amplitude_law = estimation::RicianFromMoments(m->mean, m->variance);
-          e.amplitude_law_at_m = reference.position_m;
-          e.amplitude_law_range_m = (VaPosition(p.map_index) - reference.position_m).norm();
-        }
+      if (v.moments) {  // the window the estimate used, at this step's sample position
+        Entry& e = map_[p.map_index];
+        e.amplitude_law = estimation::RicianFromMoments(v.moments->mean, v.moments->variance);
+        e.amplitude_law_at_m = reference.position_m;
+        e.amplitude_law_range_m = (VaPosition(p.map_index) - reference.position_m).norm();
       }
     } else {
       a.variance_m2 = options_.range_sigma_m * options_.range_sigma_m;

@@ -46,20 +46,23 @@ struct VaVarianceOptions {
 /// Problems with the options, empty if valid.
 std::vector<std::string> Validate(const VaVarianceOptions& options);
 
-/// The variance used for one VA at one step.
-struct VaVariance {
-  double variance_m2 = 0.0;   ///< range variance (m^2)
-  /// SINR estimated at this step (linear; 0 for the "zero or complex" case), when the window
-  /// allowed an estimate; empty when a fallback was used.
-  std::optional<double> sinr;
-};
-
 /// Moments of Y = |alpha_hat|^2 over a VA's current window (Eq. 3.27).
 struct AmplitudeMoments {
   double mean = 0.0;      ///< m1 = E[Y]
   double variance = 0.0;  ///< m2 = Var[Y] (the digest's reading of Eq. 3.26)
   int count = 0;          ///< samples in the window
 };
+
+/// The variance used for one VA at one step.
+struct VaVariance {
+  double variance_m2 = 0.0;   ///< range variance (m^2)
+  /// SINR estimated at this step (linear; 0 for the "zero or complex" case), when the window
+  /// allowed an estimate; empty when a fallback was used.
+  std::optional<double> sinr;
+  /// The window's moments the estimate came from (present exactly when sinr is).
+  std::optional<AmplitudeMoments> moments;
+};
+
 
 /// Amplitude history and variance state of all VAs; one instance per tracker.
 class VaVarianceEstimator {
