@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <cassert>
+#include <stdexcept>
+#include <string>
 
 #include "mirage/geometry/segment.h"
 
@@ -93,7 +95,10 @@ std::optional<std::vector<Vec2>> TraceImagePath(const FloorPlan& plan, std::span
 }
 
 std::vector<WallSequence> VisibleImagePaths(const FloorPlan& plan, const Vec2& tx_m, const Vec2& rx_m, int max_order) {
-  assert(max_order >= 0 && max_order <= kMaxOrder);
+  if (max_order < 0 || max_order > kMaxOrder) {
+    throw std::invalid_argument("VisibleImagePaths: max_order must be in 0.." + std::to_string(kMaxOrder) + ", got " +
+                                std::to_string(max_order));
+  }
   std::vector<WallSequence> out;
   const int count = static_cast<int>(plan.walls().size());
   WallSequence current;

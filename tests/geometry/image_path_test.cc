@@ -6,6 +6,7 @@
 #include "mirage/geometry/image_path.h"
 
 #include <cmath>
+#include <stdexcept>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -176,6 +177,12 @@ TEST(ImagePath, VisiblePathsOfASelfChannelInARectangle) {
   const auto relative = VisibleImagePaths(room, Vec2(1.0, 1.0), Vec2(4.0, 3.0), 1);
   EXPECT_EQ(relative.size(), 5u);
   EXPECT_TRUE(relative.front().empty());
+}
+
+TEST(ImagePath, VisiblePathsRejectAnUnsupportedOrder) {
+  const FloorPlan room = Rectangle(5.0, 4.0);
+  EXPECT_THROW(VisibleImagePaths(room, Vec2(1.0, 1.0), Vec2(4.0, 3.0), 4), std::invalid_argument);
+  EXPECT_THROW(VisibleImagePaths(room, Vec2(1.0, 1.0), Vec2(4.0, 3.0), -1), std::invalid_argument);
 }
 
 }  // namespace

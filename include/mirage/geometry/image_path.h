@@ -55,7 +55,8 @@ std::optional<std::vector<Vec2>> TraceImagePath(const FloorPlan& plan, std::span
 using WallSequence = std::vector<int>;
 
 /// All wall sequences of order 1 .. max_order (and the line of sight, order 0, unless tx == rx)
-/// whose paths exist between tx and rx, ordered by order then wall indices. max_order in [0, 3].
+/// whose paths exist between tx and rx, ordered by order then wall indices. Throws std::invalid_argument unless max_order is in
+/// [0, 3].
 std::vector<WallSequence> VisibleImagePaths(const FloorPlan& plan, const Vec2& tx_m, const Vec2& rx_m, int max_order);
 
 /// The sequence of the same path in the other direction (reciprocity, Kulmer App. B, Eq. 22):
