@@ -1,9 +1,11 @@
 // SPDX-License-Identifier: MIT
 // The mirage command-line tool.
 //   mirage run SCENARIO.yaml [--runs N] [--seed S] [--threads T] [--json FILE] [--csv DIR] [--plot FILE]
+//     (a `method: coop` scenario runs its grid of cooperative variants instead)
 //   mirage simulate SCENARIO.yaml --out DIR [--seed S] [--trajectory NAME] [--run R]
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
@@ -15,12 +17,16 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include "mirage/io/coop_report.h"
+#include "mirage/io/coop_scenario.h"
 #include "mirage/io/input_error.h"
 #include "mirage/io/plot.h"
 #include "mirage/io/recorded_data.h"
 #include "mirage/io/recorded_scenario.h"
 #include "mirage/io/report.h"
 #include "mirage/io/scenario.h"
+#include "mirage/pipeline/coop_experiment.h"
+#include "mirage/pipeline/coop_summary.h"
 #include "mirage/pipeline/mint_experiment.h"
 #include "mirage/pipeline/mint_summary.h"
 #include "mirage/pipeline/run_simulator.h"
@@ -53,11 +59,45 @@ std::string PlotScript() {
   return std::string(MIRAGE_SOURCE_DIR) + "/tools/plot_run.py";
 }
 
+std::string CoopPlotScript() {
+  if (const char* env = std::getenv("MIRAGE_COOP_PLOT_SCRIPT"); env != nullptr && *env != '\0') return env;
+  return std::string(MIRAGE_SOURCE_DIR) + "/tools/plot_coop.py";
+}
+
+// A cooperative grid (issue 5): every variant `runs` times on both cores, with a progress bar.
+int RunCoop(const RunArgs& args, const mirage::io::ScenarioOverrides& overrides) {
+  const auto scenario = mirage::io::LoadCoopScenario(args.scenario, overrides);
+  const auto& config = scenario.config;
+  const bool show_progress = !args.quiet && isatty(STDERR_FILENO) != 0;
+  std::mutex progress_mutex;
+  const auto progress = [&](int done, int total) {
+    if (!show_progress) return;
+    const std::lock_guard<std::mutex> lock(progress_mutex);
+    constexpr int kWidth = 40;
+    const int filled = done * kWidth / std::max(1, total);
+    std::fprintf(stderr, "\r[%s%s] %d/%d", std::string(static_cast<std::size_t>(filled), '#').c_str(),
+                 std::string(static_cast<std::size_t>(kWidth - filled), '.').c_str(), done, total);
+    if (done == total) std::fprintf(stderr, "\n");
+  };
+  const auto result = mirage::pipeline::RunCoopExperiment(config, progress);
+  const auto summary = mirage::pipeline::SummarizeCoop(result);
+  if (!args.quiet) std::cout << mirage::io::FormatCoopTable(config, summary) << std::flush;
+  if (!args.json.empty()) {
+    mirage::io::WriteJson(args.json, mirage::io::MakeCoopJson(args.scenario, config, result, summary));
+  }
+  if (!args.csv.empty()) mirage::io::WriteCoopCsv(args.csv, summary);
+  if (!args.plot.empty()) {
+    mirage::io::RenderPlot(args.plot, CoopPlotScript(), mirage::io::CoopPlotData(config, result, summary));
+  }
+  return 0;
+}
+
 int Run(const RunArgs& args) {
   mirage::io::ScenarioOverrides overrides;
   overrides.runs = args.runs;
   overrides.seed = args.seed;
   overrides.threads = args.threads;
+  if (mirage::io::IsCoopScenario(args.scenario)) return RunCoop(args, overrides);
   const auto scenario = mirage::io::LoadScenario(args.scenario, overrides);
 
   const bool show_progress = !args.quiet && isatty(STDERR_FILENO) != 0;
@@ -84,6 +124,9 @@ int Run(const RunArgs& args) {
 int Simulate(const SimulateArgs& args) {
   mirage::io::ScenarioOverrides overrides;
   overrides.seed = args.seed;
+  if (mirage::io::IsCoopScenario(args.scenario)) {
+    throw mirage::io::InputError(args.scenario + ": method coop has no recorded-data form; use mirage run");
+  }
   const auto scenario = mirage::io::LoadScenario(args.scenario, overrides);
   const auto& config = scenario.mint;
   if (config.measurement_model == mirage::pipeline::MeasurementModel::kRecorded) {

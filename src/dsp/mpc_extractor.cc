@@ -152,18 +152,40 @@ void MpcExtractor::Readjust(Residual& residual, Component& c) const {
   AddScaled(residual, c, -1.0);
 }
 
-std::vector<Mpc> MpcExtractor::Extract(const core::Cir& cir) const {
+std::vector<Mpc> MpcExtractor::Extract(const core::Cir& cir) const { return Extract(cir, options_.max_components); }
+
+std::vector<Mpc> MpcExtractor::Extract(const core::Cir& cir, int max_components) const {
+  return ExtractFromMatchedFilter(MatchedFilter(cir), cir.start_s, max_components);
+}
+
+Complex MpcExtractor::ProjectAt(const std::vector<Complex>& y, double start_s, double delay_s) const {
+  assert(static_cast<int>(y.size()) == sample_count_);
+  const double x = (delay_s - start_s) / sample_period_s_;
+  if (!(x >= 0.0 && x <= sample_count_ - 1)) return Complex(0.0, 0.0);
+  // Quadratic (Lagrange) interpolation through the three samples around x, as in Refine().
+  if (sample_count_ < 3) return y[static_cast<std::size_t>(std::lround(x))];
+  const int n = std::clamp(static_cast<int>(std::lround(x)), 1, sample_count_ - 2);
+  const double delta = x - n;
+  const Complex ya = y[static_cast<std::size_t>(n - 1)];
+  const Complex yb = y[static_cast<std::size_t>(n)];
+  const Complex yc = y[static_cast<std::size_t>(n + 1)];
+  return yb + 0.5 * delta * (yc - ya) + 0.5 * delta * delta * (ya - 2.0 * yb + yc);
+}
+
+std::vector<Mpc> MpcExtractor::ExtractFromMatchedFilter(std::vector<Complex> matched_filter_output, double start_s,
+                                                        int max_components) const {
+  assert(static_cast<int>(matched_filter_output.size()) == sample_count_);
   Residual residual;
-  residual.y = MatchedFilter(cir);
+  residual.y = std::move(matched_filter_output);
   residual.energy.resize(residual.y.size());
   for (std::size_t n = 0; n < residual.y.size(); ++n) residual.energy[n] = std::norm(residual.y[n]);
   residual.block_argmax.resize(static_cast<std::size_t>((sample_count_ + kBlock - 1) / kBlock));
   UpdateBlocks(residual, 0, sample_count_ - 1);
 
   std::vector<Component> found;
-  found.reserve(static_cast<std::size_t>(options_.max_components));
+  found.reserve(static_cast<std::size_t>(std::max(0, max_components)));
   double reference_energy = 0.0;
-  for (int k = 0; k < options_.max_components; ++k) {
+  for (int k = 0; k < max_components; ++k) {
     // Search (Eq. 3.1): the strongest remaining peak of the matched-filter output.
     const Component c = Refine(residual.y, ArgMax(residual));
     const double energy = std::norm(c.amplitude);
@@ -187,7 +209,7 @@ std::vector<Mpc> MpcExtractor::Extract(const core::Cir& cir) const {
   mpcs.reserve(found.size());
   for (const auto& c : found) {
     Mpc mpc;
-    mpc.delay_s = cir.start_s + c.offset_samples * sample_period_s_;
+    mpc.delay_s = start_s + c.offset_samples * sample_period_s_;
     mpc.range_m = mpc.delay_s * core::kSpeedOfLight_mps;
     mpc.amplitude = c.amplitude;
     mpcs.push_back(mpc);

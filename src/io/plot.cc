@@ -123,16 +123,20 @@ json PlotData(const Scenario& scenario, const pipeline::MintExperimentResult& re
 
 }  // namespace
 
-void WritePlot(const std::string& png_path, const std::string& script_path, const Scenario& scenario,
-               const pipeline::MintExperimentResult& result, const pipeline::MintSummary& summary) {
+void RenderPlot(const std::string& png_path, const std::string& script_path, const nlohmann::json& data) {
   const std::string data_path = png_path + ".json";
-  WriteJson(data_path, PlotData(scenario, result, summary));
+  WriteJson(data_path, data);
   if (!std::filesystem::exists(script_path)) throw InputError(script_path + ": plotting script not found");
   const int status = Run({Interpreter(), script_path, data_path, png_path});
   if (status != 0) {
     throw InputError(png_path + ": the plot renderer failed (exit " + std::to_string(status) + "); " + Interpreter() +
                      " needs matplotlib (Debian: python3-matplotlib)");
   }
+}
+
+void WritePlot(const std::string& png_path, const std::string& script_path, const Scenario& scenario,
+               const pipeline::MintExperimentResult& result, const pipeline::MintSummary& summary) {
+  RenderPlot(png_path, script_path, PlotData(scenario, result, summary));
 }
 
 }  // namespace mirage::io

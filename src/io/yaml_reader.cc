@@ -299,6 +299,51 @@ std::vector<YamlMap> YamlMap::MapList(const std::string& key, bool allow_empty) 
   return maps;
 }
 
+// An absent key gives an empty sequence: callers fall back to their default.
+YAML::Node YamlMap::OptionalNonEmptyList(const std::string& key) {
+  const YAML::Node n = Get(key);
+  if (!n) return YAML::Node(YAML::NodeType::Sequence);
+  if (!n.IsSequence()) Fail(key, "expected a list, got " + ScalarText(n));
+  if (n.size() == 0) Fail(key, "expected at least one entry");
+  return n;
+}
+
+std::vector<double> YamlMap::NumberList(const std::string& key) {
+  const YAML::Node n = OptionalNonEmptyList(key);
+  std::vector<double> values;
+  for (std::size_t i = 0; i < n.size(); ++i) values.push_back(ToNumber(n[i], fmt::format("{}[{}]", KeyPath(key), i)));
+  return values;
+}
+
+std::vector<bool> YamlMap::BooleanList(const std::string& key) {
+  const YAML::Node n = OptionalNonEmptyList(key);
+  std::vector<bool> values;
+  for (std::size_t i = 0; i < n.size(); ++i) {
+    const YAML::Node entry = n[i];
+    bool ok = entry.IsScalar();
+    bool value = false;
+    if (ok) {
+      try {
+        value = entry.as<bool>();
+      } catch (const YAML::Exception&) {
+        ok = false;
+      }
+    }
+    if (!ok) FailAt(key, i, "expected true or false, got " + ScalarText(entry));
+    values.push_back(value);
+  }
+  return values;
+}
+
+void YamlMap::FailAt(const std::string& key, std::size_t index, const std::string& message) const {
+  const std::string key_path = fmt::format("{}[{}]", KeyPath(key), index);
+  const YAML::Node& map = node_;  // const lookup: non-const operator[] would insert
+  const YAML::Node list = map[key];
+  // Fall back to the map's line when the entry does not exist (a caller's wrong index).
+  const YAML::Node at = list && list.IsSequence() && index < list.size() ? list[index] : node_;
+  throw InputError(fmt::format("{}: {}: {}", Where(at, key_path), key_path, message));
+}
+
 std::vector<std::pair<std::string, double>> YamlMap::NumberTable() {
   std::vector<std::pair<std::string, double>> table;
   for (const auto& kv : node_) {

@@ -2,15 +2,12 @@
 #include "mirage/pipeline/mint_experiment.h"
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <map>
 #include <memory>
-#include <mutex>
 #include <set>
 #include <string>
-#include <thread>
 
 #include "mirage/channel/cir_synthesizer.h"
 #include "mirage/channel/specular_path.h"
@@ -20,6 +17,7 @@
 #include "mirage/eval/error_stats.h"
 #include "mirage/eval/position_error_bound.h"
 #include "mirage/geometry/trajectory.h"
+#include "mirage/pipeline/parallel_jobs.h"
 #include "mirage/pipeline/run_simulator.h"
 #include "mirage/pipeline/tracker_adapter.h"
 
@@ -208,35 +206,12 @@ MintExperimentResult RunMintExperiment(const MintExperimentConfig& config, const
   const int total = trajectories * config.runs;
   MintExperimentResult result;
   result.runs.resize(static_cast<std::size_t>(total));
-  std::atomic<int> next{0};
-  std::atomic<int> finished{0};
-  // An exception in a worker (out of memory) must reach the caller, not std::terminate.
-  std::mutex error_mutex;
-  std::exception_ptr error;
-  const auto worker = [&]() {
-    for (int job = next++; job < total; job = next++) {
-      try {
+  RunJobs(
+      total, config.threads,
+      [&](int job) {
         result.runs[static_cast<std::size_t>(job)] = RunOne(shared, job / config.runs, job % config.runs);
-      } catch (...) {
-        const std::lock_guard<std::mutex> lock(error_mutex);
-        if (!error) error = std::current_exception();
-        next = total;  // stop handing out jobs
-        return;
-      }
-      const int done = ++finished;
-      if (progress) progress(done, total);
-    }
-  };
-  int threads = config.threads > 0 ? config.threads : static_cast<int>(std::thread::hardware_concurrency());
-  threads = std::clamp(threads, 1, std::max(1, total));
-  if (threads == 1) {
-    worker();
-  } else {
-    std::vector<std::thread> pool;
-    for (int i = 0; i < threads; ++i) pool.emplace_back(worker);
-    for (auto& t : pool) t.join();
-  }
-  if (error) std::rethrow_exception(error);
+      },
+      progress);
   result.known_vas = std::move(shared.known_vas);
   result.channel_vas = std::move(shared.simulation.channel_vas);
   result.wall_s = Seconds(Clock::now() - t_start);

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
-# Every example runs as-is (briefly: one run per trajectory) and writes its outputs (STYLE.md
+# Every example runs as-is (briefly: one run per trajectory, or per variant of a coop grid) and writes its outputs (STYLE.md
 # Sec. 8): exit 0, a JSON report with position_error_m, CSV files and a non-empty picture.
 # Usage: examples_test.sh MIRAGE_BINARY EXAMPLES_DIR OUTPUT_DIR
 set -u
@@ -37,7 +37,11 @@ for file in "${files[@]}"; do
     problem="exit status $status: $(head -c 500 "$out/$name.stderr")"
   elif ! grep -q '"position_error_m"' "$out/$name.json" 2>/dev/null; then
     problem="$out/$name.json has no position_error_m"
-  elif [[ ! -s $out/${name}_csv/tracks.csv || ! -s $out/${name}_csv/runs.csv ]]; then
+  elif grep -q '"method": "coop"' "$out/$name.json" &&
+    [[ ! -s $out/${name}_csv/variants.csv || ! -s $out/${name}_csv/error_by_step.csv ]]; then
+    problem="the CSV files (variants.csv, error_by_step.csv) are missing in $out/${name}_csv"
+  elif ! grep -q '"method": "coop"' "$out/$name.json" &&
+    [[ ! -s $out/${name}_csv/tracks.csv || ! -s $out/${name}_csv/runs.csv ]]; then
     problem="the CSV files are missing in $out/${name}_csv"
   elif [[ ! -s $out/$name.png ]]; then
     problem="$out/$name.png is missing or empty"

@@ -77,6 +77,27 @@ TEST(MpcExtractor, MatchedFilterOutputEqualsThePathAmplitudeAtItsOnGridDelay) {
   EXPECT_EQ(peak - y.begin(), 160);
 }
 
+TEST(MpcExtractor, PerCallCountAndProjectionAtAnArbitraryDelay) {
+  // Three paths: asking for 2 components returns the 2 strongest; the projection at a path's
+  // exact (fractional) delay is its amplitude (Kulmer Eq. 6), and 0 outside the window.
+  const channel::CirSynthesizer synth(Options(200.0));
+  const MpcExtractor extractor = ExtractorFor(synth, Extraction(true, 20, -60.0));
+  const std::vector<channel::SpecularPath> paths{Path(10.03e-9, Complex(0.5, 0.2)), Path(30.41e-9, Complex(-0.3, 0.1)),
+                                                 Path(50.77e-9, Complex(0.05, 0.0))};
+  const core::Cir cir = Noiseless(synth, paths);
+  const auto two = extractor.Extract(cir, 2);
+  ASSERT_EQ(two.size(), 2u);
+  EXPECT_NEAR(two[0].delay_s, 10.03e-9, 2e-12);
+  EXPECT_NEAR(two[1].delay_s, 30.41e-9, 2e-12);
+  const auto matched = extractor.MatchedFilter(cir);
+  for (const auto& p : paths) {
+    const Complex a = extractor.ProjectAt(matched, cir.start_s, p.delay_s);
+    EXPECT_NEAR(std::abs(a - p.amplitude), 0.0, 2e-3 * std::abs(p.amplitude) + 1e-4);
+  }
+  EXPECT_EQ(extractor.ProjectAt(matched, cir.start_s, -1e-9), Complex(0.0, 0.0));
+  EXPECT_EQ(extractor.ProjectAt(matched, cir.start_s, 1e-6), Complex(0.0, 0.0));
+}
+
 TEST(MpcExtractor, RecoversASingleNoiselessPathAtRandomFractionalDelays) {
   // 30 seeded delays in [10, 100] ns with random amplitudes and phases. Parabolic refinement on a
   // 0.125 ns (3.7 cm) grid: |range error| < 2 mm and |amplitude error| < 2 %.

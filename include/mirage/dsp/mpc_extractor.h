@@ -57,6 +57,19 @@ class MpcExtractor {
   /// Components sorted by increasing delay. The CIR must have the constructor's length and
   /// sample period.
   [[nodiscard]] std::vector<Mpc> Extract(const core::Cir& cir) const;
+  /// The same with a per-call component count (Kulmer et al. extract 1.5 |K| components, |K| the
+  /// number of paths the filter expects on the link, Sec. IV-B); the relative threshold still
+  /// applies.
+  [[nodiscard]] std::vector<Mpc> Extract(const core::Cir& cir, int max_components) const;
+  /// The same on a matched-filter output computed before (MatchedFilter(cir)), so that a caller
+  /// who also projects onto the pulse (ProjectAt) filters the CIR once.
+  [[nodiscard]] std::vector<Mpc> ExtractFromMatchedFilter(std::vector<Complex> matched_filter_output, double start_s,
+                                                          int max_components) const;
+  /// The projection <r, s(. - delay)> of the CIR onto the pulse at an arbitrary delay (Kulmer et
+  /// al. Eq. 6, the amplitude a(tau)), interpolated quadratically from the matched-filter output
+  /// y = MatchedFilter(cir) of a CIR starting at start_s; 0 outside the window.
+  [[nodiscard]] Complex ProjectAt(const std::vector<Complex>& matched_filter_output, double start_s,
+                                  double delay_s) const;
 
   /// The matched-filter output y[n] = <r, s(. - n T_s)> of a CIR (exposed for tests and plots).
   [[nodiscard]] std::vector<Complex> MatchedFilter(const core::Cir& cir) const;

@@ -6,6 +6,8 @@
 
 #include <string>
 
+#include <nlohmann/json.hpp>
+
 #include "mirage/io/scenario.h"
 #include "mirage/pipeline/mint_experiment.h"
 #include "mirage/pipeline/mint_summary.h"
@@ -16,6 +18,10 @@ namespace mirage::io {
 /// .svg). script_path is tools/plot_run.py; the interpreter is $MIRAGE_PYTHON, else
 /// /usr/bin/python3 (where Debian installs matplotlib), else python3 on the PATH.
 /// Throws InputError when the file cannot be written or the renderer fails.
+/// Writes `data` next to png_path (png_path + ".json") and runs the Python script on it:
+/// `python3 SCRIPT DATA.json OUT.png`; InputError when the script is missing or fails.
+void RenderPlot(const std::string& png_path, const std::string& script_path, const nlohmann::json& data);
+
 void WritePlot(const std::string& png_path, const std::string& script_path, const Scenario& scenario,
                const pipeline::MintExperimentResult& result, const pipeline::MintSummary& summary);
 

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
 // Strict, position-aware reading of YAML documents: every value is read through a YamlMap that
 // knows its file, line and key path, checks types and ranges, and rejects unknown keys, so that a
-// typo never passes silently (STYLE.md Sec. 4, 9). The only place besides scenario.cc that sees
-// yaml-cpp.
+// typo never passes silently (STYLE.md Sec. 4, 9). The only place besides the scenario parsers
+// (scenario.cc, coop_scenario.cc) that sees yaml-cpp.
 #pragma once
 
 #include <functional>
@@ -75,6 +75,11 @@ class YamlMap {
   YamlMap OptionalMap(const std::string& key);
   /// A list of maps (required, possibly empty when allow_empty).
   std::vector<YamlMap> MapList(const std::string& key, bool allow_empty);
+  /// A non-empty list of finite numbers ([1, 2.5]; a single number is not a list), or an empty
+  /// vector when the key is absent.
+  std::vector<double> NumberList(const std::string& key);
+  /// A non-empty list of true/false, or an empty vector when the key is absent.
+  std::vector<bool> BooleanList(const std::string& key);
   /// This map read as name -> number (e.g. materials); marks every key as known.
   std::vector<std::pair<std::string, double>> NumberTable();
 
@@ -83,12 +88,16 @@ class YamlMap {
 
   /// Throws an InputError "file:line: path.key: message".
   [[noreturn]] void Fail(const std::string& key, const std::string& message) const;
+  /// Throws an InputError "file:line: path.key[index]: message" at the line of entry `index` of
+  /// the list at `key` (for checks on single entries of NumberList and BooleanList).
+  [[noreturn]] void FailAt(const std::string& key, std::size_t index, const std::string& message) const;
 
  private:
   [[nodiscard]] YAML::Node Get(const std::string& key);
   [[nodiscard]] std::string KeyPath(const std::string& key) const;
   [[nodiscard]] std::string Where(const YAML::Node& node, const std::string& key_path) const;
   [[nodiscard]] double ToNumber(const YAML::Node& node, const std::string& key_path) const;
+  [[nodiscard]] YAML::Node OptionalNonEmptyList(const std::string& key);
 
   YAML::Node node_;
   std::string path_;

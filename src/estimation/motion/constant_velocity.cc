@@ -16,12 +16,13 @@ std::vector<std::string> Validate(const ConstantVelocityOptions& options) {
   return problems;
 }
 
-void PropagateConstantVelocity(State& state, int agent, double t_s, const ConstantVelocityOptions& options) {
+namespace {
+
+// Eq. (3.16) for one agent over dt, stamping the state with t_s.
+void Propagate(State& state, int agent, double dt, double t_s, const ConstantVelocityOptions& options) {
   const Block position = state.layout().At({BlockKind::kPosition, agent});
   assert(state.layout().At({BlockKind::kVelocity, agent}).offset == position.offset + 2);
-  const double dt = t_s - state.t_s();
   assert(dt >= 0.0);
-  // Eq. (3.16).
   Eigen::Matrix4d F = Eigen::Matrix4d::Identity();
   F(0, 2) = dt;
   F(1, 3) = dt;
@@ -34,6 +35,18 @@ void PropagateConstantVelocity(State& state, int agent, double t_s, const Consta
     Q(axis + 2, axis + 2) = q * dt2;
   }
   CovarianceOps::PropagateBlock(state, position.offset, F, Q, t_s);
+}
+
+}  // namespace
+
+void PropagateConstantVelocity(State& state, int agent, double t_s, const ConstantVelocityOptions& options) {
+  Propagate(state, agent, t_s - state.t_s(), t_s, options);
+}
+
+void PropagateConstantVelocityAll(State& state, int agents, double t_s, const ConstantVelocityOptions& options) {
+  // dt is taken once: the first agent's propagation already stamps the state with t_s.
+  const double dt = t_s - state.t_s();
+  for (int m = 0; m < agents; ++m) Propagate(state, m, dt, t_s, options);
 }
 
 }  // namespace mirage::estimation

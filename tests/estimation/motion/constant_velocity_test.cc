@@ -162,6 +162,31 @@ TEST(PropagateConstantVelocity, MovesOnlyTheRequestedAgent) {
   EXPECT_EQ(state.Mean(kPos1), Eigen::VectorXd(Eigen::Vector2d(0, 4)));  // (2, 3) + 2 * (-1, 0.5)
 }
 
+TEST(PropagateConstantVelocity, AllAgentsMoveOverTheSameDt) {
+  // Per-agent calls would move only agent 0 (its call stamps the state with t_s, so agent 1 sees
+  // dt = 0); the all-agents form moves both by the same dt, as F = blkdiag(F, F) (Kulmer Eq. 5).
+  StateLayout layout;
+  layout.Append(kPos0, 2);
+  layout.Append(kVel0, 2);
+  layout.Append(kPos1, 2);
+  layout.Append(kVel1, 2);
+  const Eigen::MatrixXd P0 = RandomSpd(8, 5);
+  Eigen::VectorXd x0(8);
+  x0 << 1, 1, 9, 9, 2, 3, -1, 0.5;
+  State state(layout, x0, P0, 1.0);
+  PropagateConstantVelocityAll(state, 2, 3.0, ConstantVelocityOptions{0.5});
+  Eigen::MatrixXd F_full = Eigen::MatrixXd::Identity(8, 8);
+  F_full.topLeftCorner(4, 4) = ExpectedF(2.0);
+  F_full.bottomRightCorner(4, 4) = ExpectedF(2.0);
+  Eigen::MatrixXd Q_full = Eigen::MatrixXd::Zero(8, 8);
+  Q_full.topLeftCorner(4, 4) = ExpectedQ(2.0, 0.5);
+  Q_full.bottomRightCorner(4, 4) = ExpectedQ(2.0, 0.5);
+  EXPECT_TRUE(state.covariance().isApprox(F_full * P0 * F_full.transpose() + Q_full, 1e-13));
+  EXPECT_EQ(state.Mean(kPos0), Eigen::VectorXd(Eigen::Vector2d(19, 19)));
+  EXPECT_EQ(state.Mean(kPos1), Eigen::VectorXd(Eigen::Vector2d(0, 4)));
+  EXPECT_EQ(state.t_s(), 3.0);
+}
+
 TEST(ConstantVelocityOptions, DefaultsAreValid) {
   EXPECT_TRUE(Validate(ConstantVelocityOptions{}).empty());
   EXPECT_TRUE(Validate(ConstantVelocityOptions{1e-3}).empty());

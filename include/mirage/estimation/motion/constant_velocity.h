@@ -29,4 +29,8 @@ std::vector<std::string> Validate(const ConstantVelocityOptions& options);
 /// t_s, propagating the covariance of the whole state. dt = t_s - state.t_s() must be >= 0.
 void PropagateConstantVelocity(State& state, int agent, double t_s, const ConstantVelocityOptions& options);
 
+/// The same for agents 0 .. agents-1 of a multi-agent state, all over the same dt. (Calling
+/// PropagateConstantVelocity per agent would move only the first: it stamps the state with t_s.)
+void PropagateConstantVelocityAll(State& state, int agents, double t_s, const ConstantVelocityOptions& options);
+
 }  // namespace mirage::estimation

@@ -1,0 +1,324 @@
+// SPDX-License-Identifier: MIT
+#include "mirage/methods/coop/coop_tracker.h"
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+#include <stdexcept>
+
+#include <Eigen/Sparse>
+#include <fmt/format.h>
+
+#include "mirage/core/constants.h"
+#include "mirage/estimation/covariance_ops.h"
+#include "mirage/estimation/hungarian.h"
+#include "mirage/estimation/motion/constant_velocity.h"
+
+namespace mirage::methods::coop {
+namespace {
+
+using estimation::BlockKey;
+using estimation::BlockKind;
+
+// The wall moved by `offset_m` along its normal n = U e (U the +90 degree rotation), the
+// convention of geometry/image_path.h, so that d length / d offset is ImagePath::d_offset.
+geometry::Wall Shifted(const geometry::Wall& wall, double offset_m) {
+  const Vec2 e = (wall.end_m - wall.start_m).normalized();
+  const Vec2 n(-e.y(), e.x());
+  geometry::Wall out = wall;
+  out.start_m += offset_m * n;
+  out.end_m += offset_m * n;
+  return out;
+}
+
+}  // namespace
+
+mint::VaVarianceOptions CoopOptions::DefaultVariance() {
+  mint::VaVarianceOptions v;
+  v.window_min_m = 0.1;   // half the window: samples of one place are correlated
+  v.window_max_m = 0.2;   // Sec. IV-B: "within a distance (along the agent track) of 0.2 m"
+  v.min_samples = 5;      // 8 steps fill 0.2 m at 2.5 cm per step
+  v.default_sigma_m = 0.07;  // R_0 (Sec. IV-B)
+  v.min_sigma_m = 0.005;  // a LOS at 25 dB SINR has a 3.5 mm CRLB at T_p = 0.5 ns
+  v.overlap_distance_m = 0.0;  // overlapping expected paths are pruned before (Sec. IV-B)
+  return v;
+}
+
+std::vector<std::string> Validate(const CoopOptions& o) {
+  std::vector<std::string> problems;
+  const auto positive = [&](double v, const char* what) {
+    if (!(v > 0.0) || !std::isfinite(v)) problems.push_back(fmt::format("{} must be > 0", what));
+  };
+  positive(o.agent_sigma_m, "agent_sigma_m");
+  positive(o.velocity_sigma_mps, "velocity_sigma_mps");
+  positive(o.wall_sigma_m, "wall_sigma_m");
+  positive(o.max_speed_mps, "max_speed_mps");
+  if (o.max_order < 1 || o.max_order > 2) problems.push_back("max_order must be 1 or 2");
+  if (!(o.cutoff_m >= 0.0) || !std::isfinite(o.cutoff_m)) problems.push_back("cutoff_m must be >= 0");
+  if (!(o.extraction_factor >= 1.0) || !std::isfinite(o.extraction_factor)) {
+    problems.push_back("extraction_factor must be >= 1");
+  }
+  if (!(o.self_gate_m >= 0.0) || !std::isfinite(o.self_gate_m)) problems.push_back("self_gate_m must be >= 0");
+  if (!(o.innovation_gate_sigma >= 0.0) || !std::isfinite(o.innovation_gate_sigma)) {
+    problems.push_back("innovation_gate_sigma must be >= 0");
+  }
+  for (auto& p : mint::Validate(o.variance)) problems.push_back("variance: " + p);
+  return problems;
+}
+
+CoopTracker::CoopTracker(const CoopOptions& options, geometry::FloorPlan provided_plan, std::vector<Link> links,
+                         AntennaLayout antennas, std::optional<Vec2> anchor_m, const PulseFacts& pulse)
+    : options_(options),
+      provided_plan_(std::move(provided_plan)),
+      links_(std::move(links)),
+      antennas_(antennas),
+      anchor_m_(anchor_m.value_or(Vec2::Zero())),
+      cutoff_m_(options.cutoff_m > 0.0 ? options.cutoff_m : core::kSpeedOfLight_mps * pulse.duration_s),
+      variance_(options.variance, pulse.range_sigma_at_unit_sinr_m) {
+  if (!(pulse.duration_s > 0.0) || !(pulse.range_sigma_at_unit_sinr_m > 0.0)) {
+    throw std::invalid_argument("CoopTracker: the pulse duration and CRLB scale must be > 0");
+  }
+  if (const auto problems = Validate(options_); !problems.empty()) {
+    throw std::invalid_argument("CoopTracker: " + problems.front());
+  }
+  for (const auto& link : links_) {
+    agents_ = std::max(agents_, std::max(link.tx_agent, link.rx_agent) + 1);
+    if (link.kind == LinkKind::kAnchor && !anchor_m) throw std::invalid_argument("CoopTracker: anchor link without anchor");
+  }
+}
+
+void CoopTracker::Initialize(std::span<const Vec2> positions_m, double t_s) {
+  if (static_cast<int>(positions_m.size()) != agents_) {
+    throw std::invalid_argument(fmt::format("CoopTracker: {} start positions for {} agents", positions_m.size(), agents_));
+  }
+  estimation::StateLayout layout;
+  for (int m = 0; m < agents_; ++m) {
+    layout.Append({BlockKind::kPosition, m}, 2);
+    layout.Append({BlockKind::kVelocity, m}, 2);
+  }
+  const int walls = static_cast<int>(provided_plan_.walls().size());
+  if (options_.wall_update) {
+    for (int s = 0; s < walls; ++s) layout.Append({BlockKind::kWallOffset, s}, 1);
+  }
+  const int n = layout.dimension();
+  Eigen::VectorXd mean = Eigen::VectorXd::Zero(n);
+  Eigen::VectorXd variance = Eigen::VectorXd::Zero(n);
+  for (int m = 0; m < agents_; ++m) {
+    const int p = layout.At({BlockKind::kPosition, m}).offset;
+    const int v = layout.At({BlockKind::kVelocity, m}).offset;
+    mean.segment<2>(p) = positions_m[static_cast<std::size_t>(m)];
+    variance.segment<2>(p).setConstant(options_.agent_sigma_m * options_.agent_sigma_m);
+    variance.segment<2>(v).setConstant(options_.velocity_sigma_mps * options_.velocity_sigma_mps);
+  }
+  if (options_.wall_update) {
+    const int w = layout.At({BlockKind::kWallOffset, 0}).offset;
+    variance.segment(w, walls).setConstant(options_.wall_sigma_m * options_.wall_sigma_m);
+  }
+  // Sec. IV-B: no initial cross-covariances.
+  state_ = estimation::State(std::move(layout), std::move(mean), variance.asDiagonal(), t_s);
+  variance_.Reset();
+  history_ids_.clear();
+}
+
+Vec2 CoopTracker::Position(int agent) const { return state_.Mean({BlockKind::kPosition, agent}); }
+
+Eigen::Matrix2d CoopTracker::PositionCovariance(int agent) const {
+  return state_.Covariance({BlockKind::kPosition, agent});
+}
+
+double CoopTracker::WallOffset(int wall) const {
+  if (!options_.wall_update) return 0.0;
+  return state_.mean()(state_.layout().At({BlockKind::kWallOffset, wall}).offset);
+}
+
+double CoopTracker::WallOffsetSigma(int wall) const {
+  if (!options_.wall_update) return 0.0;
+  const int i = state_.layout().At({BlockKind::kWallOffset, wall}).offset;
+  return std::sqrt(state_.covariance()(i, i));
+}
+
+geometry::FloorPlan CoopTracker::CurrentPlan() const {
+  if (!options_.wall_update) return provided_plan_;
+  std::vector<geometry::Wall> walls;
+  walls.reserve(provided_plan_.walls().size());
+  for (std::size_t s = 0; s < provided_plan_.walls().size(); ++s) {
+    walls.push_back(Shifted(provided_plan_.walls()[s], WallOffset(static_cast<int>(s))));
+  }
+  return geometry::FloorPlan(std::move(walls), provided_plan_.obstacles());
+}
+
+std::vector<Vec2> CoopTracker::Positions() const {
+  std::vector<Vec2> out;
+  for (int m = 0; m < agents_; ++m) out.push_back(Position(m));
+  return out;
+}
+
+int CoopTracker::HistoryId(int link, const geometry::WallSequence& walls) {
+  const auto [it, inserted] = history_ids_.try_emplace({link, walls}, static_cast<int>(history_ids_.size()));
+  return it->second;
+}
+
+Vec2 CoopTracker::WindowPoint(const Link& link, std::span<const Vec2> agents_m) const {
+  const Vec2& rx = agents_m[static_cast<std::size_t>(link.rx_agent)];
+  if (link.kind != LinkKind::kRelative) return rx;
+  return 0.5 * (rx + agents_m[static_cast<std::size_t>(link.tx_agent)]);
+}
+
+std::vector<ExpectedPath> CoopTracker::ExpectedPaths(int link_index, std::span<const Vec2> agents_m,
+                                                     const geometry::FloorPlan& plan, int* visible) {
+  const Link& link = links_[static_cast<std::size_t>(link_index)];
+  const std::vector<Vec2> agents(agents_m.begin(), agents_m.end());
+  const LinkEnds ends = AntennaPositions(link, agents, anchor_m_, antennas_);
+  std::vector<ExpectedPath> paths;
+  for (auto& walls : geometry::VisibleImagePaths(plan, ends.tx_m, ends.rx_m, options_.max_order)) {
+    // A self link's "line of sight" is the antenna coupling, not a measurement of anything.
+    if (link.kind == LinkKind::kSelf && walls.empty()) continue;
+    ExpectedPath path;
+    path.range_m = geometry::ComputeImagePath(plan, walls, ends.tx_m, ends.rx_m).length_m;
+    path.walls = std::move(walls);
+    paths.push_back(std::move(path));
+  }
+  if (visible != nullptr) *visible = static_cast<int>(paths.size());
+  // Sec. IV-B: pairs of expected paths closer than d_c cannot be told apart; drop both.
+  std::vector<bool> ambiguous(paths.size(), false);
+  for (std::size_t i = 0; i < paths.size(); ++i) {
+    for (std::size_t j = i + 1; j < paths.size(); ++j) {
+      if (std::abs(paths[i].range_m - paths[j].range_m) < cutoff_m_) ambiguous[i] = ambiguous[j] = true;
+    }
+  }
+  std::vector<ExpectedPath> kept;
+  for (std::size_t i = 0; i < paths.size(); ++i) {
+    if (ambiguous[i]) continue;
+    paths[i].history = HistoryId(link_index, paths[i].walls);
+    kept.push_back(std::move(paths[i]));
+  }
+  return kept;
+}
+
+CoopStepInfo CoopTracker::Step(double t_s, std::span<const LinkSignal* const> signals) {
+  if (signals.size() != links_.size()) {
+    throw std::invalid_argument(fmt::format("CoopTracker::Step: {} signals for {} links", signals.size(), links_.size()));
+  }
+  // Prediction (Eq. 5, 16): constant velocity per agent with sigma_a = v_max / (3 dt) at dt = 1 s
+  // (Sec. IV-B, one step per second); walls static without process noise.
+  estimation::ConstantVelocityOptions cv;
+  cv.accel_sigma_mps2 = options_.max_speed_mps / 3.0;
+  estimation::PropagateConstantVelocityAll(state_, agents_, t_s, cv);
+
+  const geometry::FloorPlan plan = CurrentPlan();
+  const std::vector<Vec2> predicted = Positions();
+  const int n = state_.dimension();
+  const auto position_column = [&](int agent) { return state_.layout().At({BlockKind::kPosition, agent}).offset; };
+  const int wall_column0 = options_.wall_update ? state_.layout().At({BlockKind::kWallOffset, 0}).offset : -1;
+
+  CoopStepInfo info;
+  info.links.resize(links_.size());
+  std::vector<Eigen::Triplet<double>> triplets;
+  std::vector<double> innovation, variance;
+  std::vector<std::vector<ExpectedPath>> expected(links_.size());
+  for (std::size_t l = 0; l < links_.size(); ++l) {
+    const Link& link = links_[l];
+    LinkStepInfo& li = info.links[l];
+    expected[l] = ExpectedPaths(static_cast<int>(l), predicted, plan, &li.visible);
+    const auto& paths = expected[l];
+    li.expected = static_cast<int>(paths.size());
+    if (paths.empty()) continue;
+    // Eq. (6)-(7): round(1.5 |K|) components; a self link spends one more on the coupling.
+    const int count = static_cast<int>(std::lround(options_.extraction_factor * static_cast<double>(paths.size()))) +
+                      (link.kind == LinkKind::kSelf ? 1 : 0);
+    std::vector<double> ranges;
+    for (const double range_m : signals[l]->Ranges(count)) {
+      if (link.kind == LinkKind::kSelf && range_m < options_.self_gate_m) continue;
+      ranges.push_back(range_m);
+    }
+    li.extracted = static_cast<int>(ranges.size());
+    if (ranges.empty()) continue;
+    // Sec. III-B3: Hungarian assignment on min(|d_hat - d|, d_c); pairs at the cut-off are not
+    // associations.
+    Eigen::MatrixXd cost(static_cast<int>(paths.size()), static_cast<int>(ranges.size()));
+    for (std::size_t k = 0; k < paths.size(); ++k) {
+      for (std::size_t z = 0; z < ranges.size(); ++z) {
+        cost(static_cast<int>(k), static_cast<int>(z)) = std::min(std::abs(ranges[z] - paths[k].range_m), cutoff_m_);
+      }
+    }
+    const std::vector<int> assignment = estimation::SolveAssignment(cost);
+    const LinkEnds ends = AntennaPositions(link, predicted, anchor_m_, antennas_);
+    for (std::size_t k = 0; k < paths.size(); ++k) {
+      const int z = assignment[k];
+      if (z < 0 || !(std::abs(ranges[static_cast<std::size_t>(z)] - paths[k].range_m) < cutoff_m_)) continue;
+      // Eq. (13), (14), (17): the row of d(p_tx, p_rx, s_k) in the agents' position columns and
+      // the walls' offset columns (velocity columns are zero).
+      const geometry::ImagePath path = geometry::ComputeImagePath(plan, paths[k].walls, ends.tx_m, ends.rx_m);
+      const int row = static_cast<int>(innovation.size());
+      const std::size_t first_triplet = triplets.size();
+      Vec2 d_rx = path.d_rx;
+      if (link.kind == LinkKind::kSelf) {
+        d_rx += path.d_tx;  // the total derivative (I - Phi^T) u of App. C
+      } else if (link.kind == LinkKind::kRelative) {
+        const int c = position_column(link.tx_agent);
+        triplets.emplace_back(row, c, path.d_tx.x());
+        triplets.emplace_back(row, c + 1, path.d_tx.y());
+      }
+      const int c = position_column(link.rx_agent);
+      triplets.emplace_back(row, c, d_rx.x());
+      triplets.emplace_back(row, c + 1, d_rx.y());
+      if (options_.wall_update) {
+        for (std::size_t i = 0; i < paths[k].walls.size(); ++i) {
+          triplets.emplace_back(row, wall_column0 + paths[k].walls[i], path.d_offset[i]);  // duplicates are summed
+        }
+      }
+      const double nu = ranges[static_cast<std::size_t>(z)] - path.length_m;
+      const double r_m2 = options_.variance.enabled
+                              ? variance_.Variance(paths[k].history, true).variance_m2
+                              : options_.variance.default_sigma_m * options_.variance.default_sigma_m;
+      if (options_.innovation_gate_sigma > 0.0) {
+        // Our addition (docs/methods/coop.md): a row whose innovation is implausible under its
+        // predicted innovation variance h P h^T + r is a wrong association (a diffuse or
+        // unmodelled peak within d_c) and is dropped before it corrupts the state.
+        double s_m2 = r_m2;
+        const auto& P = state_.covariance();
+        for (std::size_t a = first_triplet; a < triplets.size(); ++a) {
+          for (std::size_t b = first_triplet; b < triplets.size(); ++b) {
+            s_m2 += triplets[a].value() * P(triplets[a].col(), triplets[b].col()) * triplets[b].value();
+          }
+        }
+        if (nu * nu > options_.innovation_gate_sigma * options_.innovation_gate_sigma * s_m2) {
+          triplets.resize(first_triplet);
+          ++li.gated;
+          continue;
+        }
+      }
+      innovation.push_back(nu);
+      variance.push_back(r_m2);
+      ++li.associated;
+    }
+  }
+
+  // One stacked update of all links (Algorithm 1), the standard covariance form.
+  const int rows = static_cast<int>(innovation.size());
+  if (rows > 0) {
+    Eigen::SparseMatrix<double, Eigen::RowMajor> H(rows, n);
+    H.setFromTriplets(triplets.begin(), triplets.end());
+    const Eigen::VectorXd nu = Eigen::Map<const Eigen::VectorXd>(innovation.data(), rows);
+    const Eigen::MatrixXd R = Eigen::Map<const Eigen::VectorXd>(variance.data(), rows).asDiagonal();
+    info.update = estimation::EkfUpdate(state_, H, nu, R, estimation::CovarianceForm::kStandard);
+  } else {
+    info.update.rejection = estimation::UpdateRejection::kNoMeasurements;
+  }
+
+  // Sec. III-C: the amplitude of every expected path at its delay at the updated state, projected
+  // from the received signal, feeds the SINR estimate of the next steps.
+  const geometry::FloorPlan posterior_plan = CurrentPlan();
+  const std::vector<Vec2> posterior = Positions();
+  for (std::size_t l = 0; l < links_.size(); ++l) {
+    const LinkEnds ends = AntennaPositions(links_[l], posterior, anchor_m_, antennas_);
+    const Vec2 window_point = WindowPoint(links_[l], posterior);
+    for (const auto& path : expected[l]) {
+      const double length_m = geometry::ComputeImagePath(posterior_plan, path.walls, ends.tx_m, ends.rx_m).length_m;
+      variance_.AddSample(path.history, window_point, signals[l]->AmplitudeAt(length_m));
+    }
+  }
+  return info;
+}
+
+}  // namespace mirage::methods::coop

@@ -1,0 +1,27 @@
+// SPDX-License-Identifier: MIT
+#include "mirage/pipeline/cir_link_signal.h"
+
+#include <cmath>
+
+#include "mirage/core/constants.h"
+
+namespace mirage::pipeline {
+
+CirLinkSignal::CirLinkSignal(const dsp::MpcExtractor& extractor, const core::Cir& cir)
+    : extractor_(&extractor), start_s_(cir.start_s), matched_(extractor.MatchedFilter(cir)) {}
+
+std::vector<double> CirLinkSignal::Ranges(int count) const {
+  std::vector<double> ranges;
+  for (const auto& mpc : extractor_->ExtractFromMatchedFilter(matched_, start_s_, count)) ranges.push_back(mpc.range_m);
+  return ranges;
+}
+
+double CirLinkSignal::AmplitudeAt(double range_m) const {
+  return std::abs(extractor_->ProjectAt(matched_, start_s_, range_m / core::kSpeedOfLight_mps));
+}
+
+methods::coop::PulseFacts PulseFactsOf(const channel::RaisedCosinePulse& pulse) {
+  return {pulse.options().duration_s, pulse.range_sigma_at_unit_sinr_m()};
+}
+
+}  // namespace mirage::pipeline
