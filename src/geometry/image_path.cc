@@ -17,8 +17,7 @@ struct Line {
 };
 
 Line WallLine(const Wall& wall) {
-  const Vec2 e = (wall.end_m - wall.start_m).normalized();
-  const Vec2 n(-e.y(), e.x());
+  const Vec2 n = WallNormal(wall);
   return {n, n.dot(wall.start_m)};
 }
 
@@ -30,6 +29,11 @@ Vec2 Reflect(const Line& line, const Vec2& v) { return v - 2.0 * line.normal.dot
 constexpr int kMaxOrder = 3;
 
 }  // namespace
+
+Vec2 WallNormal(const Wall& wall) {
+  const Vec2 e = (wall.end_m - wall.start_m).normalized();
+  return Vec2(-e.y(), e.x());
+}
 
 ImagePath ComputeImagePath(const FloorPlan& plan, std::span<const int> walls, const Vec2& tx_m, const Vec2& rx_m) {
   const auto& all = plan.walls();

@@ -438,19 +438,7 @@ CoopScenario LoadCoopScenario(const std::string& path, const ScenarioOverrides& 
   root.RejectUnknownKeys();
   CheckChannelPerPulse(channel, config);
 
-  if (overrides.runs) {
-    if (*overrides.runs < 1 || *overrides.runs > kMaxRuns) {
-      throw InputError(fmt::format("--runs: {} is out of range, expected [1, {}]", *overrides.runs, kMaxRuns));
-    }
-    config.runs = *overrides.runs;
-  }
-  if (overrides.seed) config.seed = *overrides.seed;
-  if (overrides.threads) {
-    if (*overrides.threads < 0 || *overrides.threads > kMaxThreads) {
-      throw InputError(fmt::format("--threads: {} is out of range, expected [0, {}]", *overrides.threads, kMaxThreads));
-    }
-    config.threads = *overrides.threads;
-  }
+  ApplyOverrides(overrides, config.runs, config.seed, config.threads);
   return scenario;
 }
 

@@ -166,4 +166,20 @@ void CheckInside(const geometry::FloorPlan& plan, const Vec2& p, YamlMap& where,
   }
 }
 
+void ApplyOverrides(const ScenarioOverrides& overrides, int& runs, std::uint64_t& seed, int& threads) {
+  if (overrides.runs) {
+    if (*overrides.runs < 1 || *overrides.runs > kMaxRuns) {
+      throw InputError(fmt::format("--runs: {} is out of range, expected [1, {}]", *overrides.runs, kMaxRuns));
+    }
+    runs = *overrides.runs;
+  }
+  if (overrides.seed) seed = *overrides.seed;
+  if (overrides.threads) {
+    if (*overrides.threads < 0 || *overrides.threads > kMaxThreads) {
+      throw InputError(fmt::format("--threads: {} is out of range, expected [0, {}]", *overrides.threads, kMaxThreads));
+    }
+    threads = *overrides.threads;
+  }
+}
+
 }  // namespace mirage::io

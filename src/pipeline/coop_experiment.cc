@@ -32,11 +32,6 @@ using Clock = std::chrono::steady_clock;
 // Divergence: an agent ends farther than this from its true position.
 constexpr double kDivergedM = 0.5;
 
-Vec2 Normal(const geometry::Wall& wall) {
-  const Vec2 e = (wall.end_m - wall.start_m).normalized();
-  return Vec2(-e.y(), e.x());
-}
-
 // What every run of one variant shares: the pulse-dependent channel and extraction.
 struct VariantContext {
   CoopVariant variant;
@@ -65,7 +60,7 @@ ProvidedPlan MakeProvidedPlan(const CoopExperimentConfig& config, const CoopVari
     const Vec2 unit(rng.Uniform(-0.5, 0.5), rng.Uniform(-0.5, 0.5));
     if (!config.in_plan[s]) continue;
     Vec2 shift = variant.wall_error_m * unit;
-    const Vec2 n = Normal(truth[s]);
+    const Vec2 n = geometry::WallNormal(truth[s]);
     if (variant.biased_wall && static_cast<int>(s) == config.wall_bias.wall) {
       shift += config.wall_bias.offset_m * n;
       out.biased = static_cast<int>(walls.size());
@@ -174,26 +169,14 @@ std::vector<std::vector<double>> PositionErrorBound(const CoopExperimentConfig& 
         const auto ends = methods::coop::AntennaPositions(v.links[l], at, anchor_m, config.antennas);
         const LinkChannel link_channel = SimulateLink(config, v.links[l], ends);
         for (const auto& path : model.ExpectedPaths(static_cast<int>(l), at, plan)) {
-          const auto ip = geometry::ComputeImagePath(plan, path.walls, ends.tx_m, ends.rx_m);
+          const double length_m = path.range_m();
           double gain = 1.0;
           for (const int s : path.walls) gain *= plan.walls()[static_cast<std::size_t>(s)].reflection_coeff;
-          const double sinr = v.synthesizer->TrueSinr(Complex(gain / ip.length_m, 0.0),
-                                                      ip.length_m / core::kSpeedOfLight_mps, link_channel.dm_reference_m);
+          const double sinr = v.synthesizer->TrueSinr(Complex(gain / length_m, 0.0), length_m / core::kSpeedOfLight_mps,
+                                                      link_channel.dm_reference_m);
+          // The model's layout is the layout of `state` (a copy of its initial state).
           Eigen::RowVectorXd h = Eigen::RowVectorXd::Zero(n);
-          const auto column = [&](int agent) {
-            return state.layout().At({estimation::BlockKind::kPosition, agent}).offset;
-          };
-          Vec2 d_rx = ip.d_rx;
-          if (v.links[l].kind == LinkKind::kSelf) {
-            d_rx += ip.d_tx;
-          } else if (v.links[l].kind == LinkKind::kRelative) {
-            h.segment<2>(column(v.links[l].tx_agent)) += ip.d_tx.transpose();
-          }
-          h.segment<2>(column(v.links[l].rx_agent)) += d_rx.transpose();
-          if (options.wall_update) {
-            const int w0 = state.layout().At({estimation::BlockKind::kWallOffset, 0}).offset;
-            for (std::size_t i = 0; i < path.walls.size(); ++i) h(w0 + path.walls[i]) += ip.d_offset[i];
-          }
+          for (const auto& [column, value] : model.JacobianRow(v.links[l], path)) h(column) += value;
           rows.push_back(h);
           variance.push_back(sigma1_m * sigma1_m / std::max(sinr, 1e-12));
         }
@@ -248,13 +231,13 @@ CoopRun RunOne(const CoopExperimentConfig& config, const VariantContext& v,
     Vec2 b = Vec2::Zero();
     for (std::size_t s = 0; s < provided_walls.size(); ++s) {
       wall_error[s] = tracker.WallOffset(static_cast<int>(s)) - provided.true_offset_m[s];
-      const Vec2 n = Normal(provided_walls[s]);
+      const Vec2 n = geometry::WallNormal(provided_walls[s]);
       const double sigma = std::max(tracker.WallOffsetSigma(static_cast<int>(s)), 1e-6);
       A += n * n.transpose() / (sigma * sigma);
       b += n * wall_error[s] / (sigma * sigma);
     }
     translation = A.ldlt().solve(b);
-    for (std::size_t s = 0; s < provided_walls.size(); ++s) wall_error[s] -= Normal(provided_walls[s]).dot(translation);
+    for (std::size_t s = 0; s < provided_walls.size(); ++s) wall_error[s] -= geometry::WallNormal(provided_walls[s]).dot(translation);
   };
 
   CoopRun out;

@@ -28,6 +28,10 @@
 
 namespace mirage::geometry {
 
+/// The unit normal n_s = U e_s of a wall (e_s the direction start -> end, U the +90 degree
+/// rotation): the direction in which an offset c_s moves the wall.
+Vec2 WallNormal(const Wall& wall);
+
 /// Length of one specular path and its derivatives.
 struct ImagePath {
   double length_m = 0.0;

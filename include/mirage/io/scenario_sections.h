@@ -12,6 +12,7 @@
 #include "mirage/core/types.h"
 #include "mirage/dsp/mpc_extractor.h"
 #include "mirage/geometry/floor_plan.h"
+#include "mirage/io/scenario.h"
 #include "mirage/io/yaml_reader.h"
 #include "mirage/methods/mint/va_variance_estimator.h"
 
@@ -67,6 +68,10 @@ methods::mint::VaVarianceOptions ReadVariance(YamlMap m, const methods::mint::Va
 
 /// Fails at `key` when p is not enclosed by the plan's walls or lies inside an obstacle; `what`
 /// names the point in the message ("anchor 'A1'").
+/// Applies the command-line overrides --runs, --seed, --threads with the ranges of the file's
+/// keys; InputError naming the option otherwise.
+void ApplyOverrides(const ScenarioOverrides& overrides, int& runs, std::uint64_t& seed, int& threads);
+
 void CheckInside(const geometry::FloorPlan& plan, const Vec2& p, YamlMap& where, const std::string& key,
                  const std::string& what);
 

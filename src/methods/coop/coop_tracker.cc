@@ -20,11 +20,10 @@ namespace {
 using estimation::BlockKey;
 using estimation::BlockKind;
 
-// The wall moved by `offset_m` along its normal n = U e (U the +90 degree rotation), the
-// convention of geometry/image_path.h, so that d length / d offset is ImagePath::d_offset.
+// The wall moved by `offset_m` along its normal (geometry::WallNormal), so that
+// d length / d offset is ImagePath::d_offset.
 geometry::Wall Shifted(const geometry::Wall& wall, double offset_m) {
-  const Vec2 e = (wall.end_m - wall.start_m).normalized();
-  const Vec2 n(-e.y(), e.x());
+  const Vec2 n = geometry::WallNormal(wall);
   geometry::Wall out = wall;
   out.start_m += offset_m * n;
   out.end_m += offset_m * n;
@@ -174,7 +173,7 @@ std::vector<ExpectedPath> CoopTracker::ExpectedPaths(int link_index, std::span<c
     // A self link's "line of sight" is the antenna coupling, not a measurement of anything.
     if (link.kind == LinkKind::kSelf && walls.empty()) continue;
     ExpectedPath path;
-    path.range_m = geometry::ComputeImagePath(plan, walls, ends.tx_m, ends.rx_m).length_m;
+    path.path = geometry::ComputeImagePath(plan, walls, ends.tx_m, ends.rx_m);
     path.walls = std::move(walls);
     paths.push_back(std::move(path));
   }
@@ -183,7 +182,7 @@ std::vector<ExpectedPath> CoopTracker::ExpectedPaths(int link_index, std::span<c
   std::vector<bool> ambiguous(paths.size(), false);
   for (std::size_t i = 0; i < paths.size(); ++i) {
     for (std::size_t j = i + 1; j < paths.size(); ++j) {
-      if (std::abs(paths[i].range_m - paths[j].range_m) < cutoff_m_) ambiguous[i] = ambiguous[j] = true;
+      if (std::abs(paths[i].range_m() - paths[j].range_m()) < cutoff_m_) ambiguous[i] = ambiguous[j] = true;
     }
   }
   std::vector<ExpectedPath> kept;
@@ -193,6 +192,28 @@ std::vector<ExpectedPath> CoopTracker::ExpectedPaths(int link_index, std::span<c
     kept.push_back(std::move(paths[i]));
   }
   return kept;
+}
+
+std::vector<std::pair<int, double>> CoopTracker::JacobianRow(const Link& link, const ExpectedPath& expected) const {
+  const auto position_column = [&](int agent) { return state_.layout().At({BlockKind::kPosition, agent}).offset; };
+  const geometry::ImagePath& path = expected.path;
+  std::vector<std::pair<int, double>> row;
+  Vec2 d_rx = path.d_rx;
+  if (link.kind == LinkKind::kSelf) {
+    d_rx += path.d_tx;  // the total derivative (I - Phi^T) u of App. C
+  } else if (link.kind == LinkKind::kRelative) {
+    const int c = position_column(link.tx_agent);
+    row.emplace_back(c, path.d_tx.x());
+    row.emplace_back(c + 1, path.d_tx.y());
+  }
+  const int c = position_column(link.rx_agent);
+  row.emplace_back(c, d_rx.x());
+  row.emplace_back(c + 1, d_rx.y());
+  if (options_.wall_update) {
+    const int wall_column0 = state_.layout().At({BlockKind::kWallOffset, 0}).offset;
+    for (std::size_t i = 0; i < expected.walls.size(); ++i) row.emplace_back(wall_column0 + expected.walls[i], path.d_offset[i]);
+  }
+  return row;
 }
 
 CoopStepInfo CoopTracker::Step(double t_s, std::span<const LinkSignal* const> signals) {
@@ -208,8 +229,6 @@ CoopStepInfo CoopTracker::Step(double t_s, std::span<const LinkSignal* const> si
   const geometry::FloorPlan plan = CurrentPlan();
   const std::vector<Vec2> predicted = Positions();
   const int n = state_.dimension();
-  const auto position_column = [&](int agent) { return state_.layout().At({BlockKind::kPosition, agent}).offset; };
-  const int wall_column0 = options_.wall_update ? state_.layout().At({BlockKind::kWallOffset, 0}).offset : -1;
 
   CoopStepInfo info;
   info.links.resize(links_.size());
@@ -238,36 +257,17 @@ CoopStepInfo CoopTracker::Step(double t_s, std::span<const LinkSignal* const> si
     Eigen::MatrixXd cost(static_cast<int>(paths.size()), static_cast<int>(ranges.size()));
     for (std::size_t k = 0; k < paths.size(); ++k) {
       for (std::size_t z = 0; z < ranges.size(); ++z) {
-        cost(static_cast<int>(k), static_cast<int>(z)) = std::min(std::abs(ranges[z] - paths[k].range_m), cutoff_m_);
+        cost(static_cast<int>(k), static_cast<int>(z)) = std::min(std::abs(ranges[z] - paths[k].range_m()), cutoff_m_);
       }
     }
     const std::vector<int> assignment = estimation::SolveAssignment(cost);
-    const LinkEnds ends = AntennaPositions(link, predicted, anchor_m_, antennas_);
     for (std::size_t k = 0; k < paths.size(); ++k) {
       const int z = assignment[k];
-      if (z < 0 || !(std::abs(ranges[static_cast<std::size_t>(z)] - paths[k].range_m) < cutoff_m_)) continue;
-      // Eq. (13), (14), (17): the row of d(p_tx, p_rx, s_k) in the agents' position columns and
-      // the walls' offset columns (velocity columns are zero).
-      const geometry::ImagePath path = geometry::ComputeImagePath(plan, paths[k].walls, ends.tx_m, ends.rx_m);
+      if (z < 0 || !(std::abs(ranges[static_cast<std::size_t>(z)] - paths[k].range_m()) < cutoff_m_)) continue;
       const int row = static_cast<int>(innovation.size());
       const std::size_t first_triplet = triplets.size();
-      Vec2 d_rx = path.d_rx;
-      if (link.kind == LinkKind::kSelf) {
-        d_rx += path.d_tx;  // the total derivative (I - Phi^T) u of App. C
-      } else if (link.kind == LinkKind::kRelative) {
-        const int c = position_column(link.tx_agent);
-        triplets.emplace_back(row, c, path.d_tx.x());
-        triplets.emplace_back(row, c + 1, path.d_tx.y());
-      }
-      const int c = position_column(link.rx_agent);
-      triplets.emplace_back(row, c, d_rx.x());
-      triplets.emplace_back(row, c + 1, d_rx.y());
-      if (options_.wall_update) {
-        for (std::size_t i = 0; i < paths[k].walls.size(); ++i) {
-          triplets.emplace_back(row, wall_column0 + paths[k].walls[i], path.d_offset[i]);  // duplicates are summed
-        }
-      }
-      const double nu = ranges[static_cast<std::size_t>(z)] - path.length_m;
+      for (const auto& [column, value] : JacobianRow(link, paths[k])) triplets.emplace_back(row, column, value);
+      const double nu = ranges[static_cast<std::size_t>(z)] - paths[k].range_m();
       const double r_m2 = options_.variance.enabled
                               ? variance_.Variance(paths[k].history, true).variance_m2
                               : options_.variance.default_sigma_m * options_.variance.default_sigma_m;

@@ -113,12 +113,12 @@ TEST(CoopTracker, ExpectedPathsDropTheCouplingAndAmbiguousPairs) {
     EXPECT_FALSE(p.walls.empty()) << "the antenna coupling is not a path";
     for (const auto& q : paths) {
       if (&p != &q) {
-        EXPECT_GE(std::abs(p.range_m - q.range_m), tracker.cutoff_m());
+        EXPECT_GE(std::abs(p.range_m() - q.range_m()), tracker.cutoff_m());
       }
     }
   }
   for (const auto& p : paths) {
-    ASSERT_EQ(p.walls.size() == 1 && (p.walls[0] == 0 || p.walls[0] == 3), false) << "the 2 m pair was kept";
+    EXPECT_FALSE(p.walls.size() == 1 && (p.walls[0] == 0 || p.walls[0] == 3)) << "the 2 m pair was kept";
   }
   EXPECT_NEAR(tracker.cutoff_m(), 0.1499, 1e-3);  // c T_p at 0.5 ns
 }
@@ -178,7 +178,7 @@ TEST(CoopTracker, InnovationGateDropsAWrongRange) {
     tracker.Initialize(agents, 0.0);
     const auto rel_paths = tracker.ExpectedPaths(2, agents, Room());
     std::vector<double> rel;
-    for (std::size_t i = 0; i < rel_paths.size(); ++i) rel.push_back(rel_paths[i].range_m + (i == 0 ? 0.12 : 0.0));
+    for (std::size_t i = 0; i < rel_paths.size(); ++i) rel.push_back(rel_paths[i].range_m() + (i == 0 ? 0.12 : 0.0));
     OffSignal none({}), none2({}), relative(rel);
     const std::vector<const LinkSignal*> signals{&none, &none2, &relative};
     const auto info = tracker.Step(1.0, signals);

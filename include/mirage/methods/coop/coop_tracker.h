@@ -83,8 +83,9 @@ std::vector<std::string> Validate(const CoopOptions& options);
 /// One expected (deterministic) path of a link at the predicted state.
 struct ExpectedPath {
   geometry::WallSequence walls;  ///< wall sequence (empty: line of sight)
-  double range_m = 0.0;          ///< predicted length (m)
+  geometry::ImagePath path;      ///< predicted length and its derivatives
   int history = 0;               ///< id of its amplitude history
+  [[nodiscard]] double range_m() const { return path.length_m; }
 };
 
 /// What one step did on one link.
@@ -154,6 +155,12 @@ class CoopTracker {
   [[nodiscard]] geometry::FloorPlan CurrentPlan() const;
   /// The association cut-off d_c in use (m).
   [[nodiscard]] double cutoff_m() const { return cutoff_m_; }
+
+  /// The non-zero entries (state column, value) of the Jacobian row of an expected path's length
+  /// at the current state's layout (Eq. 13, 14, 17): the agents' position columns and, with the
+  /// wall update, the offset column of each wall of the path (a wall met twice appears twice;
+  /// entries add). Velocity columns are zero.
+  [[nodiscard]] std::vector<std::pair<int, double>> JacobianRow(const Link& link, const ExpectedPath& path) const;
 
   /// Expected paths of a link at the given agent positions and the current walls, after the
   /// ambiguity pruning (exposed for tests and the position-error bound).
