@@ -75,4 +75,13 @@ void CovarianceOps::Marginalize(State& state, BlockKey key) {
   state.covariance_ = std::move(P);
 }
 
+void CovarianceOps::Reinitialize(State& state, BlockKey key, const Eigen::VectorXd& x_new, const Eigen::MatrixXd& P_new) {
+  const Block b = state.layout_.At(key);
+  assert(x_new.size() == b.size && P_new.rows() == b.size && P_new.cols() == b.size);
+  state.mean_.segment(b.offset, b.size) = x_new;
+  state.covariance_.middleRows(b.offset, b.size).setZero();
+  state.covariance_.middleCols(b.offset, b.size).setZero();
+  state.covariance_.block(b.offset, b.offset, b.size, b.size) = P_new;
+}
+
 }  // namespace mirage::estimation

@@ -166,6 +166,20 @@ methods::slam::SlamOptions ReadSlam(YamlMap m, std::size_t walls) {
   }
   o.variance = ReadVariance(m.OptionalMap("variance"));
   o.discovery = ReadDiscovery(m.OptionalMap("discovery"));
+  o.shadow_cone_deg = m.NumberInRange("shadow_cone_deg", o.shadow_cone_deg, 0.0, 180.0, "deg");
+  o.shadow_sigma_m = m.NumberInRange("shadow_sigma_m", o.shadow_sigma_m, 1e-9, kHuge, "m");
+  {
+    YamlMap r = m.OptionalMap("recovery");
+    auto& ro = o.recovery;
+    ro.enabled = r.Boolean("enabled", ro.enabled);
+    ro.match_tolerance_m = r.NumberInRange("match_tolerance_m", ro.match_tolerance_m, 1e-9, kHuge, "m");
+    ro.los_candidates = r.Integer("los_candidates", ro.los_candidates, 1, 100);
+    ro.min_margin = r.Integer("min_margin", ro.min_margin, 1, 1000);
+    ro.lost_steps = r.Integer("lost_steps", ro.lost_steps, 1, 1000000);
+    ro.follow_gate_m = r.NumberInRange("follow_gate_m", ro.follow_gate_m, 1e-9, kHuge, "m");
+    ro.max_jump_m = r.NumberInRange("max_jump_m", ro.max_jump_m, 1e-9, kHuge, "m");
+    r.RejectUnknownKeys();
+  }
   m.RejectUnknownKeys();
   Check(o, m);
   return o;

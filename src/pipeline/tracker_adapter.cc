@@ -40,6 +40,7 @@ TrackerStep TrackerAdapter::Step(double t_s, std::span<const core::AnchorRanges>
     out.associations = static_cast<int>(step.associations.size());
     out.rejected_update = step.update.rejection == estimation::UpdateRejection::kNotPositiveDefinite;
     out.discovered = step.discovered;
+    out.relocalized = step.relocalized;
     return out;
   }
   const auto step = mint_->Step(t_s, measurements);

@@ -269,5 +269,38 @@ TEST(CovarianceOpsMarginalize, DropsTheFirstAndTheLastBlock) {
   EXPECT_EQ(last.mean(), before.mean().head(6));
 }
 
+// ---------------------------------------------------------------------------------------------
+// Reinitialize
+// ---------------------------------------------------------------------------------------------
+
+TEST(CovarianceOpsReinitialize, SetsTheBlockAndDecorrelatesItKeepingTheRest) {
+  State s = RandomState(41);
+  const Eigen::MatrixXd before = s.covariance();
+  const Eigen::VectorXd mean_before = s.mean();
+  const Eigen::Vector2d x_new(3.0, -4.0);
+  const Eigen::Matrix2d P_new = Eigen::Vector2d(0.01, 0.02).asDiagonal();
+  CovarianceOps::Reinitialize(s, kVel0, x_new, P_new);
+  const int v = s.layout().At(kVel0).offset;
+  EXPECT_TRUE(s.Mean(kVel0).isApprox(x_new));
+  EXPECT_TRUE(s.covariance().block(v, v, 2, 2).isApprox(P_new));
+  for (int i = 0; i < s.dimension(); ++i) {
+    const bool in_block = i == v || i == v + 1;
+    for (int j = 0; j < s.dimension(); ++j) {
+      const bool other_in_block = j == v || j == v + 1;
+      if (in_block != other_in_block) {
+        EXPECT_EQ(s.covariance()(i, j), 0.0) << i << "," << j;  // no correlation left
+      } else if (!in_block) {
+        EXPECT_EQ(s.covariance()(i, j), before(i, j)) << i << "," << j;  // the rest's marginal kept
+      }
+    }
+    if (!in_block) {
+      EXPECT_EQ(s.mean()(i), mean_before(i));
+    }
+  }
+  // Still a valid covariance.
+  Eigen::LLT<Eigen::MatrixXd> llt(s.covariance());
+  EXPECT_EQ(llt.info(), Eigen::Success);
+}
+
 }  // namespace
 }  // namespace mirage::estimation

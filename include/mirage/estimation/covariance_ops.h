@@ -39,6 +39,11 @@ class CovarianceOps {
   static void Augment(State& state, BlockKey key, const Eigen::VectorXd& x_new, const Eigen::MatrixXd& P_new_x,
                       const Eigen::MatrixXd& P_new);
 
+  /// Sets a block's mean to x_new and its covariance to P_new, uncorrelated with the rest of the
+  /// state: the block starts afresh (a tracker restarting a lost agent), the rest keeps its
+  /// marginal.
+  static void Reinitialize(State& state, BlockKey key, const Eigen::VectorXd& x_new, const Eigen::MatrixXd& P_new);
+
   /// Removes a block, marginalising it out of the Gaussian.
   static void Marginalize(State& state, BlockKey key);
 };

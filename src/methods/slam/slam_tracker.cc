@@ -7,6 +7,7 @@
 #include <limits>
 #include <unordered_set>
 
+#include "mirage/core/constants.h"
 #include "mirage/estimation/covariance_ops.h"
 #include "mirage/estimation/gates/chi2_gate.h"
 #include "mirage/estimation/gates/rician_gate.h"
@@ -30,6 +31,10 @@ std::vector<std::string> Validate(const SlamOptions& options) {
   positive(options.initial_velocity_sigma_mps, "initial_velocity_sigma_mps", "m/s");
   positive(options.prior_va_sigma_m, "prior_va_sigma_m", "m");
   positive(options.va_filter_sigma_m, "va_filter_sigma_m", "m");
+  positive(options.shadow_sigma_m, "shadow_sigma_m", "m");
+  if (!(options.shadow_cone_deg >= 0.0 && options.shadow_cone_deg <= 180.0)) {
+    problems.push_back("shadow_cone_deg must be in [0, 180] deg");
+  }
   if (options.prior_max_order < 0 || options.prior_max_order > geometry::kMaxVirtualAnchorOrder) {
     problems.push_back("prior_max_order must be in [0, " + std::to_string(geometry::kMaxVirtualAnchorOrder) + "]");
   }
@@ -42,10 +47,14 @@ std::vector<std::string> Validate(const SlamOptions& options) {
   for (const auto& p : estimation::Validate(options.motion)) problems.push_back("motion." + p);
   for (const auto& p : mint::Validate(options.variance)) problems.push_back("variance." + p);
   for (const auto& p : Validate(options.discovery)) problems.push_back("discovery." + p);
+  for (const auto& p : Validate(options.recovery)) problems.push_back("recovery." + p);
   return problems;
 }
 
 namespace {
+
+// VAs without a visibility region the map needs before the track-loss recovery runs (below).
+constexpr std::size_t kRecoveryMinVas = 2;
 
 // The agent's position and velocity with their marginal covariance, as a state of its own.
 estimation::State AgentMarginal(const estimation::State& state) {
@@ -74,7 +83,8 @@ SlamTracker::SlamTracker(const SlamOptions& options, const geometry::VirtualAnch
       known_vas_(&known_vas),
       plan_(&plan),
       variance_(options.variance, range_sigma_at_unit_sinr_m),
-      discovery_(options.discovery) {}
+      discovery_(options.discovery),
+      recovery_(options.recovery) {}
 
 void SlamTracker::Initialize(double t_s, const Vec2& p0_m) {
   estimation::StateLayout layout;
@@ -88,6 +98,7 @@ void SlamTracker::Initialize(double t_s, const Vec2& p0_m) {
   state_ = estimation::State(layout, mean, diag.asDiagonal().toDenseMatrix(), t_s);
   variance_.Reset();
   discovery_.Reset();
+  recovery_.Reset();
   map_.clear();
   step_ = 0;
   next_discovered_id_ = kFirstDiscoveredVaId;
@@ -119,6 +130,10 @@ Vec2 SlamTracker::VaPosition(std::size_t map_index) const {
 double SlamTracker::CurrentVariance(int va_id) const {
   if (!options_.variance.enabled) return options_.range_sigma_m * options_.range_sigma_m;
   return variance_.CurrentVariance(va_id);
+}
+
+bool SlamTracker::HasVisibility(std::size_t map_index) const {
+  return map_[map_index].va.origin == MapVaOrigin::kPrior && options_.prior_visibility && !plan_->walls().empty();
 }
 
 bool SlamTracker::Filtered(std::size_t map_index) const {
@@ -283,11 +298,19 @@ SlamStepResult SlamTracker::Step(double t_s, std::span<const core::AnchorRanges>
   estimation::PropagateConstantVelocity(state_, 0, t_s, options_.motion);
   SlamStepResult result;
   Reference reference{state_.Mean({BlockKind::kPosition, 0}), state_.Covariance({BlockKind::kPosition, 0})};
+  std::vector<Vec2> blocked_m;  // the anchors whose LOS found no range at this step
 
   if (options_.reassociate) {
     // Stage 1 (as in MINT): the anchors' LOS ranges alone give the reference for stage 2.
     auto los = Associate(reference, measurements, true, 0.0);
     std::erase_if(los, [&](const Pairing& p) { return Filtered(p.map_index); });
+    if (options_.shadow_cone_deg > 0.0) {  // the shadow cone's blocked anchors
+      for (const auto& e : map_) {
+        if (e.va.origin != MapVaOrigin::kAnchor) continue;
+        const bool seen = std::any_of(los.begin(), los.end(), [&](const Pairing& p) { return p.anchor_index == e.va.anchor_index; });
+        if (!seen) blocked_m.push_back(e.prior_m);
+      }
+    }
     if (!los.empty()) {
       std::vector<double> variances;
       for (const auto& p : los) variances.push_back(CurrentVariance(map_[p.map_index].va.id));
@@ -300,7 +323,21 @@ SlamStepResult SlamTracker::Step(double t_s, std::span<const core::AnchorRanges>
     }
   }
 
-  const std::vector<Pairing> pairings = Associate(reference, measurements, false, options_.innovation_gate_chi2);
+  std::vector<Pairing> pairings = Associate(reference, measurements, false, options_.innovation_gate_chi2);
+  if (!blocked_m.empty()) {
+    // A path reaches the agent from the direction of its VA; within the cone around a blocked
+    // anchor's direction it most likely passes the same obstacle (options: shadow_cone_deg).
+    const double cos_cone = std::cos(options_.shadow_cone_deg * core::kPi / 180.0);
+    for (auto& p : pairings) {
+      const MapVaOrigin origin = map_[p.map_index].va.origin;
+      if (origin == MapVaOrigin::kAnchor) continue;
+      if (HasVisibility(p.map_index)) continue;
+      const Vec2 to_va = (VaPosition(p.map_index) - reference.position_m).normalized();
+      for (const Vec2& a : blocked_m) {
+        if (to_va.dot((a - reference.position_m).normalized()) > cos_cone) p.shadowed = true;
+      }
+    }
+  }
 
   std::vector<double> variances;
   std::vector<Pairing> updating;  // the pairings of VAs the filter lets through
@@ -313,11 +350,11 @@ SlamStepResult SlamTracker::Step(double t_s, std::span<const core::AnchorRanges>
     a.measured_range_m = p.measurement->range_m;
     if (options_.variance.enabled) {
       const auto& amplitude = p.measurement->amplitude;
-      if (amplitude && !p.overlapped) variance_.AddSample(va.id, reference.position_m, *amplitude);
-      const mint::VaVariance v = variance_.Variance(va.id, !p.overlapped && amplitude.has_value());
+      if (amplitude && !p.overlapped && !p.shadowed) variance_.AddSample(va.id, reference.position_m, *amplitude);
+      const mint::VaVariance v = variance_.Variance(va.id, !p.overlapped && !p.shadowed && amplitude.has_value());
       a.variance_m2 = v.variance_m2;
       a.sinr = v.sinr;
-      if (v.moments) {  // the window the estimate used, at this step's sample position
+      if (v.moments && !p.shadowed) {  // the window the estimate used, at this step's sample position
         Entry& e = map_[p.map_index];
         e.amplitude_law = estimation::RicianFromMoments(v.moments->mean, v.moments->variance);
         e.amplitude_law_at_m = reference.position_m;
@@ -329,12 +366,14 @@ SlamStepResult SlamTracker::Step(double t_s, std::span<const core::AnchorRanges>
     // Judged after this step's sample entered the window: a VA leaves (and rejoins) the update
     // as soon as its own estimate says so.
     if (Filtered(p.map_index)) continue;
+    if (p.shadowed) a.variance_m2 += options_.shadow_sigma_m * options_.shadow_sigma_m;
     variances.push_back(a.variance_m2);
     updating.push_back(p);
     result.associations.push_back(a);
     ++map_[p.map_index].va.associations;
   }
   result.update = Update(state_, updating, variances);
+  result.relocalized = RecoverTrack(t_s, measurements);
 
   // Discovery with the ranges nobody took, from the posterior agent position.
   const Vec2 agent_m = state_.Mean({BlockKind::kPosition, 0});
@@ -384,6 +423,40 @@ SlamStepResult SlamTracker::Step(double t_s, std::span<const core::AnchorRanges>
     if (block.key.kind == BlockKind::kVirtualAnchor) ++result.state_vas;
   }
   return result;
+}
+
+bool SlamTracker::RecoverTrack(double t_s, std::span<const core::AnchorRanges> measurements) {
+  if (!options_.recovery.enabled) return false;
+  std::vector<MapPoint> anchors;
+  std::vector<MapPoint> points;
+  for (std::size_t i = 0; i < map_.size(); ++i) {
+    const MapVa& va = map_[i].va;
+    if (va.origin == MapVaOrigin::kAnchor) {
+      anchors.push_back({va.anchor_index, map_[i].prior_m});
+      points.push_back(anchors.back());
+    } else if (!HasVisibility(i) && InState(i)) {
+      points.push_back({va.anchor_index, VaPosition(i)});
+    }
+  }
+  // The score counts every point as a candidate everywhere, which is right only for VAs without
+  // a visibility region: with the floor plan's VAs (hundreds, each visible in a small region)
+  // chance matches made it restart good tracks (6 of 25 runs in seminar_room_slam_known.yaml).
+  // With the anchors alone the two LOS intersections cannot be told apart.
+  if (points.size() < anchors.size() + kRecoveryMinVas) return false;
+  const Vec2 estimate_m = state_.Mean({BlockKind::kPosition, 0});
+  const auto restart = recovery_.Check(t_s, estimate_m, anchors, points, measurements);
+  if (!restart) return false;
+  // Restart the agent as at the start, at the recovered position with the candidates' velocity,
+  // uncorrelated with the map: the correlations were built along the lost track. The map keeps
+  // its marginal; the discovery's groups and candidates hold positions of the lost track.
+  const double sp2 = options_.initial_position_sigma_m * options_.initial_position_sigma_m;
+  const double sv2 = options_.initial_velocity_sigma_mps * options_.initial_velocity_sigma_mps;
+  estimation::CovarianceOps::Reinitialize(state_, {BlockKind::kPosition, 0}, restart->position_m,
+                                          Eigen::Matrix2d::Identity() * sp2);
+  estimation::CovarianceOps::Reinitialize(state_, {BlockKind::kVelocity, 0}, restart->velocity_mps,
+                                          Eigen::Matrix2d::Identity() * sv2);
+  discovery_.Reset();
+  return true;
 }
 
 std::vector<MapVa> SlamTracker::Map() const {

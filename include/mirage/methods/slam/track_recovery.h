@@ -1,0 +1,111 @@
+// SPDX-License-Identifier: MIT
+// Track-loss recovery for SLAM (a mirage addition; the thesis names re-localization as open
+// work, Lafer 2014 Sec. 6.1, and the paper's filter cannot recover from a lost track).
+//
+// Why SLAM needs its own: MINT's search (methods/mint/relocalization) scores positions by the
+// VAs the known floor plan makes visible there; SLAM has no floor plan, only the anchors and the
+// VAs it has found. With two anchors a position is fixed by their LOS ranges up to a mirror
+// image across the line through them; in the seminar room a track that is pulled off in an
+// obstacle's shadow either runs away or settles on that mirror image, where both LOS ranges fit
+// and only the reflections disagree. The recovery therefore
+//   1. takes the candidate positions where two anchors' LOS circles intersect, trying each
+//      anchor's first few measured ranges as its LOS (the LOS is the earliest path when it is
+//      there at all);
+//   2. counts, at each candidate and at the current estimate, the map points (the anchors and
+//      the VAs in the state) that have a measured range within a tolerance of their expected
+//      range, each map point at most once. Discovered VAs have no visibility region, so the
+//      counts of two positions are compared, never a fraction;
+//   3. restarts the agent at a candidate that beats the estimate by a margin at several
+//      consecutive steps, the candidates of those steps following one another as a walker
+//      could.
+#pragma once
+
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "mirage/core/measurements.h"
+#include "mirage/core/types.h"
+
+namespace mirage::methods::slam {
+
+/// Parameters of the track-loss recovery.
+struct TrackRecoveryOptions {
+  /// Detect a lost track and restart it.
+  bool enabled = true;
+  /// A map point matches when a measured range lies within this distance of its expected range
+  /// (m), > 0. 5 cm: about 2 sigma of a first-order reflection's range at 5 dB SINR, as in MINT.
+  double match_tolerance_m = 0.05;
+  /// Measured ranges of each anchor, earliest first, tried as its LOS, >= 1. 3: the LOS is the
+  /// first range unless a clutter or noise peak came before it.
+  int los_candidates = 3;
+  /// Matched map points by which a candidate must beat the estimate, >= 1. 2: one chance match
+  /// among ~15 clutter ranges per anchor and step is common, two at the same position are not.
+  int min_margin = 2;
+  /// Consecutive steps at which a candidate must win before the restart, >= 1.
+  int lost_steps = 3;
+  /// The winning candidates of consecutive steps must lie within this distance of one another
+  /// (m), > 0: a walker's step (0.05 m at 0.5 m/s and 10 Hz) plus the candidates' scatter.
+  double follow_gate_m = 0.3;
+  /// Candidates farther than this from the estimate are not considered (m), > 0. 3 m: a track
+  /// that settled on the mirror image of the two-anchor geometry is twice its distance from the
+  /// anchors' line away (about 1 m in the seminar room); far candidates are chance
+  /// intersections of reflections and clutter (on range-level input with clutter before the LOS
+  /// one 6 m away won at 3 steps and restarted good tracks in 18 of 25 runs).
+  double max_jump_m = 3.0;
+};
+
+/// Problems with the options, empty if valid.
+std::vector<std::string> Validate(const TrackRecoveryOptions& options);
+
+/// A point of the map as the recovery sees it: whose ranges it explains and where it is.
+struct MapPoint {
+  int anchor_index = 0;
+  Vec2 position_m = Vec2::Zero();
+};
+
+/// Map points with a measured range of their anchor within tolerance_m of the expected range.
+int CountMatches(const Vec2& p_m, std::span<const MapPoint> map, std::span<const core::AnchorRanges> measurements,
+                 double tolerance_m);
+
+/// Intersections of the LOS circles of every pair of anchors, each anchor's first
+/// `los_candidates` ranges tried as its LOS radius. Circles that miss each other by less than
+/// 5 cm (noise) give the point between them.
+std::vector<Vec2> LosCandidates(std::span<const MapPoint> anchors, std::span<const core::AnchorRanges> measurements,
+                                int los_candidates);
+
+/// Where to restart a lost track.
+struct Restart {
+  Vec2 position_m = Vec2::Zero();
+  /// The winning candidates' mean velocity over the steps that triggered the restart, zero
+  /// when one step triggers it.
+  Vec2 velocity_mps = Vec2::Zero();
+};
+
+/// The recovery's state across steps. Not thread-safe; one per tracker.
+class TrackRecovery {
+ public:
+  explicit TrackRecovery(const TrackRecoveryOptions& options) : options_(options) {}
+
+  /// Forgets the pending candidate.
+  void Reset();
+
+  /// Checks the estimate after the step at t_s; returns where to restart when the track is
+  /// lost. `anchors` are the physical anchors (the LOS centres), `map` all map points that
+  /// score (the anchors among them).
+  std::optional<Restart> Check(double t_s, const Vec2& estimate_m, std::span<const MapPoint> anchors,
+                               std::span<const MapPoint> map, std::span<const core::AnchorRanges> measurements);
+
+  /// Consecutive steps the current candidate has won so far.
+  [[nodiscard]] int pending_steps() const { return pending_steps_; }
+
+ private:
+  TrackRecoveryOptions options_;
+  int pending_steps_ = 0;
+  Vec2 pending_m_ = Vec2::Zero();        // the last winning candidate
+  Vec2 first_pending_m_ = Vec2::Zero();  // the first winning candidate of the run
+  double first_pending_t_s_ = 0.0;
+};
+
+}  // namespace mirage::methods::slam
