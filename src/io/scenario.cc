@@ -111,6 +111,19 @@ methods::mint::MintOptions ReadMint(YamlMap m, std::size_t walls) {
   return o;
 }
 
+methods::slam::TrackRecoveryOptions ReadRecovery(YamlMap m) {
+  methods::slam::TrackRecoveryOptions o;
+  o.enabled = m.Boolean("enabled", o.enabled);
+  o.match_tolerance_m = m.NumberInRange("match_tolerance_m", o.match_tolerance_m, 1e-9, kHuge, "m");
+  o.los_candidates = m.Integer("los_candidates", o.los_candidates, 1, 100);
+  o.min_margin = m.Integer("min_margin", o.min_margin, 1, 1000);
+  o.lost_steps = m.Integer("lost_steps", o.lost_steps, 1, 1000000);
+  o.follow_gate_m = m.NumberInRange("follow_gate_m", o.follow_gate_m, 1e-9, kHuge, "m");
+  o.max_jump_m = m.NumberInRange("max_jump_m", o.max_jump_m, 1e-9, kHuge, "m");
+  m.RejectUnknownKeys();
+  return o;
+}
+
 methods::slam::DiscoveryOptions ReadDiscovery(YamlMap m) {
   methods::slam::DiscoveryOptions o;
   o.enabled = m.Boolean("enabled", o.enabled);
@@ -168,18 +181,7 @@ methods::slam::SlamOptions ReadSlam(YamlMap m, std::size_t walls) {
   o.discovery = ReadDiscovery(m.OptionalMap("discovery"));
   o.shadow_cone_deg = m.NumberInRange("shadow_cone_deg", o.shadow_cone_deg, 0.0, 180.0, "deg");
   o.shadow_sigma_m = m.NumberInRange("shadow_sigma_m", o.shadow_sigma_m, 1e-9, kHuge, "m");
-  {
-    YamlMap r = m.OptionalMap("recovery");
-    auto& ro = o.recovery;
-    ro.enabled = r.Boolean("enabled", ro.enabled);
-    ro.match_tolerance_m = r.NumberInRange("match_tolerance_m", ro.match_tolerance_m, 1e-9, kHuge, "m");
-    ro.los_candidates = r.Integer("los_candidates", ro.los_candidates, 1, 100);
-    ro.min_margin = r.Integer("min_margin", ro.min_margin, 1, 1000);
-    ro.lost_steps = r.Integer("lost_steps", ro.lost_steps, 1, 1000000);
-    ro.follow_gate_m = r.NumberInRange("follow_gate_m", ro.follow_gate_m, 1e-9, kHuge, "m");
-    ro.max_jump_m = r.NumberInRange("max_jump_m", ro.max_jump_m, 1e-9, kHuge, "m");
-    r.RejectUnknownKeys();
-  }
+  o.recovery = ReadRecovery(m.OptionalMap("recovery"));
   m.RejectUnknownKeys();
   Check(o, m);
   return o;

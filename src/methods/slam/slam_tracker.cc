@@ -304,13 +304,7 @@ SlamStepResult SlamTracker::Step(double t_s, std::span<const core::AnchorRanges>
     // Stage 1 (as in MINT): the anchors' LOS ranges alone give the reference for stage 2.
     auto los = Associate(reference, measurements, true, 0.0);
     std::erase_if(los, [&](const Pairing& p) { return Filtered(p.map_index); });
-    if (options_.shadow_cone_deg > 0.0) {  // the shadow cone's blocked anchors
-      for (const auto& e : map_) {
-        if (e.va.origin != MapVaOrigin::kAnchor) continue;
-        const bool seen = std::any_of(los.begin(), los.end(), [&](const Pairing& p) { return p.anchor_index == e.va.anchor_index; });
-        if (!seen) blocked_m.push_back(e.prior_m);
-      }
-    }
+    if (options_.shadow_cone_deg > 0.0) blocked_m = BlockedAnchors(los);
     if (!los.empty()) {
       std::vector<double> variances;
       for (const auto& p : los) variances.push_back(CurrentVariance(map_[p.map_index].va.id));
@@ -324,20 +318,7 @@ SlamStepResult SlamTracker::Step(double t_s, std::span<const core::AnchorRanges>
   }
 
   std::vector<Pairing> pairings = Associate(reference, measurements, false, options_.innovation_gate_chi2);
-  if (!blocked_m.empty()) {
-    // A path reaches the agent from the direction of its VA; within the cone around a blocked
-    // anchor's direction it most likely passes the same obstacle (options: shadow_cone_deg).
-    const double cos_cone = std::cos(options_.shadow_cone_deg * core::kPi / 180.0);
-    for (auto& p : pairings) {
-      const MapVaOrigin origin = map_[p.map_index].va.origin;
-      if (origin == MapVaOrigin::kAnchor) continue;
-      if (HasVisibility(p.map_index)) continue;
-      const Vec2 to_va = (VaPosition(p.map_index) - reference.position_m).normalized();
-      for (const Vec2& a : blocked_m) {
-        if (to_va.dot((a - reference.position_m).normalized()) > cos_cone) p.shadowed = true;
-      }
-    }
-  }
+  MarkShadowed(pairings, blocked_m, reference.position_m);
 
   std::vector<double> variances;
   std::vector<Pairing> updating;  // the pairings of VAs the filter lets through
@@ -349,12 +330,14 @@ SlamStepResult SlamTracker::Step(double t_s, std::span<const core::AnchorRanges>
     a.va_id = va.id;
     a.measured_range_m = p.measurement->range_m;
     if (options_.variance.enabled) {
+      // Overlapping paths' amplitudes are not used (Sec. 3.6), nor a shadowed stand-in's.
       const auto& amplitude = p.measurement->amplitude;
-      if (amplitude && !p.overlapped && !p.shadowed) variance_.AddSample(va.id, reference.position_m, *amplitude);
-      const mint::VaVariance v = variance_.Variance(va.id, !p.overlapped && !p.shadowed && amplitude.has_value());
+      const bool amplitude_usable = amplitude && !p.overlapped && !p.shadowed;
+      if (amplitude_usable) variance_.AddSample(va.id, reference.position_m, *amplitude);
+      const mint::VaVariance v = variance_.Variance(va.id, amplitude_usable);
       a.variance_m2 = v.variance_m2;
       a.sinr = v.sinr;
-      if (v.moments && !p.shadowed) {  // the window the estimate used, at this step's sample position
+      if (v.moments) {  // the window the estimate used, at this step's sample position
         Entry& e = map_[p.map_index];
         e.amplitude_law = estimation::RicianFromMoments(v.moments->mean, v.moments->variance);
         e.amplitude_law_at_m = reference.position_m;
@@ -423,6 +406,31 @@ SlamStepResult SlamTracker::Step(double t_s, std::span<const core::AnchorRanges>
     if (block.key.kind == BlockKind::kVirtualAnchor) ++result.state_vas;
   }
   return result;
+}
+
+std::vector<Vec2> SlamTracker::BlockedAnchors(const std::vector<Pairing>& los) const {
+  std::vector<Vec2> blocked_m;
+  for (const auto& e : map_) {
+    if (e.va.origin != MapVaOrigin::kAnchor) continue;
+    const bool seen =
+        std::any_of(los.begin(), los.end(), [&](const Pairing& p) { return p.anchor_index == e.va.anchor_index; });
+    if (!seen) blocked_m.push_back(e.prior_m);
+  }
+  return blocked_m;
+}
+
+void SlamTracker::MarkShadowed(std::vector<Pairing>& pairings, std::span<const Vec2> blocked_m,
+                               const Vec2& at_m) const {
+  if (blocked_m.empty()) return;
+  // A path reaches the agent from the direction of its VA; within the cone around a blocked
+  // anchor's direction it most likely passes the same obstacle (options: shadow_cone_deg).
+  const double cos_cone = std::cos(options_.shadow_cone_deg * core::kPi / 180.0);
+  for (auto& p : pairings) {
+    if (map_[p.map_index].va.origin == MapVaOrigin::kAnchor || HasVisibility(p.map_index)) continue;
+    const Vec2 to_va = (VaPosition(p.map_index) - at_m).normalized();
+    p.shadowed = std::any_of(blocked_m.begin(), blocked_m.end(),
+                             [&](const Vec2& a_m) { return to_va.dot((a_m - at_m).normalized()) > cos_cone; });
+  }
 }
 
 bool SlamTracker::RecoverTrack(double t_s, std::span<const core::AnchorRanges> measurements) {

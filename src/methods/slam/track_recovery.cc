@@ -94,13 +94,13 @@ void IntersectCircles(const Vec2& c1, double r1, const Vec2& c2, double r2, std:
 
 std::vector<Vec2> LosCandidates(std::span<const MapPoint> anchors, std::span<const core::AnchorRanges> measurements,
                                 int los_candidates) {
+  std::vector<std::vector<double>> radii_m;
+  for (const MapPoint& anchor : anchors) radii_m.push_back(LosRanges(measurements, anchor.anchor_index, los_candidates));
   std::vector<Vec2> out;
   for (std::size_t i = 0; i < anchors.size(); ++i) {
-    const auto ri = LosRanges(measurements, anchors[i].anchor_index, los_candidates);
     for (std::size_t j = i + 1; j < anchors.size(); ++j) {
-      const auto rj = LosRanges(measurements, anchors[j].anchor_index, los_candidates);
-      for (const double a : ri) {
-        for (const double b : rj) IntersectCircles(anchors[i].position_m, a, anchors[j].position_m, b, out);
+      for (const double a : radii_m[i]) {
+        for (const double b : radii_m[j]) IntersectCircles(anchors[i].position_m, a, anchors[j].position_m, b, out);
       }
     }
   }

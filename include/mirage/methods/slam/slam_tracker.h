@@ -25,6 +25,10 @@
 //   estimate: a VA on the default sigma (0.07 m > 6.23 cm) is exempt until its window is full,
 //   otherwise no new VA could ever be associated (digest Sec. 8 item 6). The physical anchors
 //   are never filtered: one bad window behind an obstacle would lose the LOS for good.
+// - mirage additions, each an option documented below and in docs/methods/slam.md: the amplitude
+//   gate, the VA filter that keeps associating, the batch check before promotion, the shadow
+//   cone (blocked-LOS stand-ins of discovered VAs weakened) and track-loss recovery
+//   (methods/slam/track_recovery).
 #pragma once
 
 #include <optional>
@@ -216,6 +220,11 @@ class SlamTracker {
   estimation::UpdateResult Update(estimation::State& state, const std::vector<Pairing>& pairings,
                                   const std::vector<double>& variances_m2) const;
   void AddToState(std::size_t map_index);
+  // Shadow cone: positions of the anchors without a LOS pairing at stage 1.
+  [[nodiscard]] std::vector<Vec2> BlockedAnchors(const std::vector<Pairing>& los) const;
+  // Shadow cone: flags the pairings of VAs without a visibility region whose path arrives at
+  // at_m from within the cone around a blocked anchor's direction.
+  void MarkShadowed(std::vector<Pairing>& pairings, std::span<const Vec2> blocked_m, const Vec2& at_m) const;
   // Track-loss check after the update; restarts the agent and returns true when it was lost.
   bool RecoverTrack(double t_s, std::span<const core::AnchorRanges> measurements);
   // The amplitude gate's law for a VA seen from at_m at the expected range, if any.

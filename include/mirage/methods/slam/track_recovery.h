@@ -97,9 +97,6 @@ class TrackRecovery {
   std::optional<Restart> Check(double t_s, const Vec2& estimate_m, std::span<const MapPoint> anchors,
                                std::span<const MapPoint> map, std::span<const core::AnchorRanges> measurements);
 
-  /// Consecutive steps the current candidate has won so far.
-  [[nodiscard]] int pending_steps() const { return pending_steps_; }
-
  private:
   TrackRecoveryOptions options_;
   int pending_steps_ = 0;
