@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // The SLAM tracker on synthetic unlabeled ranges in the 6 m x 6 m square room of
 // methods/mint/square_room.h: the known-VA baseline, discovery from the anchors alone on clean
-// ranges, lazy state augmentation, the VA filter and option validation.
+// ranges, lazy state augmentation, the amplitude gate, the shadow cone and option validation.
 #include "mirage/methods/slam/slam_tracker.h"
 
 #include <algorithm>
@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "methods/mint/square_room.h"
+#include "mirage/core/constants.h"
 #include "mirage/geometry/trajectory.h"
 
 namespace mirage::methods::slam {
@@ -145,6 +146,74 @@ bool AssociatesAWeakLosStandIn(double amplitude_gate_probability) {
 TEST(SlamTracker, AmplitudeGateRejectsAWeakStandInForABlockedLos) {
   EXPECT_FALSE(AssociatesAWeakLosStandIn(1e-3));
   EXPECT_TRUE(AssociatesAWeakLosStandIn(0.0));  // without the gate the range test alone accepts it
+}
+
+// The anchors-only loop up to step k with anchor 0's LOS range taken out at step k (blocked) or
+// left in: the associations of that step.
+std::vector<SlamAssociation> StepWithLos(bool los_blocked, std::size_t k, Vec2* agent_m) {
+  const auto plan = mint::testing::EmptySquareRoom();
+  const auto anchors_only = mint::testing::SquareRoomVas(plan, 0);
+  const auto truth = mint::testing::SquareRoomVas(plan, 1);
+  SlamOptions options;  // shadow cone 30 deg, 5 cm
+  options.prior_visibility = false;
+  SlamTracker tracker(options, anchors_only, plan, kSigma1M);
+  const auto samples = Loop();
+  tracker.Initialize(samples.front().t_s, samples.front().position_m);
+  core::Rng rng(4, 0);
+  for (std::size_t i = 1; i <= k; ++i) {
+    auto ranges = MeasureRanges(truth, plan, samples[i].position_m, MeasurementModel{}, rng);
+    if (i == k && los_blocked) {
+      const double los_m = (anchors_only[0].position_m - samples[i].position_m).norm();
+      std::erase_if(ranges[0].ranges, [&](const core::RangeMeasurement& r) { return std::abs(r.range_m - los_m) < 0.1; });
+    }
+    const auto step = tracker.Step(samples[i].t_s, ranges);
+    if (i == k) {
+      *agent_m = step.position_m;
+      return step.associations;
+    }
+  }
+  return {};
+}
+
+TEST(SlamTracker, ShadowConeWeakensOnlyTheDiscoveredVasBehindABlockedAnchor) {
+  // Step 150 is on the loop's westward leg at (2, 4.5): anchor 0 (1, 5) lies 153 deg off the
+  // x axis, its west-wall VA (-1, 5) 17 deg from that, its north-wall VA (1, 7) 42 deg away.
+  constexpr std::size_t kStep = 150;
+  Vec2 agent_m;
+  const auto blocked = StepWithLos(true, kStep, &agent_m);
+  const auto open = StepWithLos(false, kStep, &agent_m);
+  const auto plan = mint::testing::EmptySquareRoom();
+  const auto truth = mint::testing::SquareRoomVas(plan, 1);
+  const Vec2 to_anchor = (truth[0].position_m - agent_m).normalized();
+  const double shadow_m2 = SlamOptions{}.shadow_sigma_m * SlamOptions{}.shadow_sigma_m;
+  int inside = 0, outside = 0;
+  for (const auto& a : blocked) {
+    ASSERT_NE(a.va_id, truth[0].id) << "the blocked LOS has no range to associate";
+    if (a.va_id < kFirstDiscoveredVaId) continue;
+    const auto same = std::find_if(open.begin(), open.end(), [&](const SlamAssociation& o) { return o.va_id == a.va_id; });
+    ASSERT_NE(same, open.end()) << "VA " << a.va_id << " is associated with the LOS present too";
+    // Where does this VA lie? The nearest true VA of its anchor stands for it.
+    double best_m = 1e9;
+    Vec2 va_m = Vec2::Zero();
+    for (const auto& t : truth.all()) {
+      if (t.anchor_index != a.anchor_index) continue;
+      const double d_m = std::abs((t.position_m - agent_m).norm() - a.measured_range_m);
+      if (d_m < best_m) {
+        best_m = d_m;
+        va_m = t.position_m;
+      }
+    }
+    const double cos_angle = (va_m - agent_m).normalized().dot(to_anchor);
+    if (cos_angle > std::cos(30.0 * core::kPi / 180.0)) {
+      ++inside;
+      EXPECT_NEAR(a.variance_m2 - same->variance_m2, shadow_m2, 1e-4) << "VA " << a.va_id << " in the cone";
+    } else {
+      ++outside;
+      EXPECT_NEAR(a.variance_m2, same->variance_m2, 1e-4) << "VA " << a.va_id << " outside the cone";
+    }
+  }
+  EXPECT_GE(inside, 1) << "the west-wall VA of anchor 0 is discovered and seen at step " << kStep;
+  EXPECT_GE(outside, 1);
 }
 
 TEST(SlamTracker, ValidateNamesTheBadOption) {
