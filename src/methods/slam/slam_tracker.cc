@@ -425,11 +425,12 @@ void SlamTracker::MarkShadowed(std::vector<Pairing>& pairings, std::span<const V
   // A path reaches the agent from the direction of its VA; within the cone around a blocked
   // anchor's direction it most likely passes the same obstacle (options: shadow_cone_deg).
   const double cos_cone = std::cos(options_.shadow_cone_deg * core::kPi / 180.0);
+  std::vector<Vec2> to_blocked;
+  for (const Vec2& a_m : blocked_m) to_blocked.push_back((a_m - at_m).normalized());
   for (auto& p : pairings) {
     if (map_[p.map_index].va.origin == MapVaOrigin::kAnchor || HasVisibility(p.map_index)) continue;
     const Vec2 to_va = (VaPosition(p.map_index) - at_m).normalized();
-    p.shadowed = std::any_of(blocked_m.begin(), blocked_m.end(),
-                             [&](const Vec2& a_m) { return to_va.dot((a_m - at_m).normalized()) > cos_cone; });
+    p.shadowed = std::any_of(to_blocked.begin(), to_blocked.end(), [&](const Vec2& u) { return to_va.dot(u) > cos_cone; });
   }
 }
 

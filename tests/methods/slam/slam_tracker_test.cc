@@ -104,6 +104,24 @@ TEST(SlamTracker, WithoutDiscoveryTheMapHoldsOnlyTheAnchors) {
   EXPECT_EQ(out.max_state_vas, 0);
 }
 
+// Runs the loop up to step k with `known` in the tracker and `truth` producing the ranges; at
+// step k `edit` changes the ranges first. Returns what step k produced.
+template <typename Edit>
+SlamStepResult RunToStep(const SlamOptions& options, const geometry::VirtualAnchorSet& known,
+                         const geometry::VirtualAnchorSet& truth, std::uint64_t seed, std::size_t k, Edit edit) {
+  const auto plan = mint::testing::EmptySquareRoom();
+  SlamTracker tracker(options, known, plan, kSigma1M);
+  const auto samples = Loop();
+  tracker.Initialize(samples.front().t_s, samples.front().position_m);
+  core::Rng rng(seed, 0);
+  for (std::size_t i = 1; i < k; ++i) {
+    tracker.Step(samples[i].t_s, MeasureRanges(truth, plan, samples[i].position_m, MeasurementModel{}, rng));
+  }
+  auto ranges = MeasureRanges(truth, plan, samples[k].position_m, MeasurementModel{}, rng);
+  edit(ranges, samples[k].position_m);
+  return tracker.Step(samples[k].t_s, ranges);
+}
+
 // Whether the tracker associates a weak range near anchor 0's LOS at step 60 of the loop, after
 // 59 steps of normal ranges (the amplitude window forms after about 18 steps of 5 cm).
 bool AssociatesAWeakLosStandIn(double amplitude_gate_probability) {
@@ -113,34 +131,20 @@ bool AssociatesAWeakLosStandIn(double amplitude_gate_probability) {
   options.prior_max_order = 1;
   options.discovery.enabled = false;
   options.amplitude_gate_probability = amplitude_gate_probability;
-  SlamTracker tracker(options, vas, plan, kSigma1M);
-  const auto samples = Loop();
-  tracker.Initialize(samples.front().t_s, samples.front().position_m);
-  core::Rng rng(5, 0);
-  int los_id = -1;
-  for (const auto& va : vas.all()) {
-    if (va.order == 0 && va.anchor_index == 0) los_id = va.id;
-  }
-  for (std::size_t k = 1; k <= 60; ++k) {
-    auto ranges = mint::testing::MeasureRanges(vas, plan, samples[k].position_m, MeasurementModel{}, rng);
-    if (k == 60) {
-      // The LOS is blocked: in its place a diffuse-multipath peak 2 cm later at a tenth of the
-      // amplitude - inside every range gate.
-      const double los_m = (vas[los_id].position_m - samples[k].position_m).norm();
-      auto& list = ranges[0].ranges;
-      const auto los = std::min_element(list.begin(), list.end(), [&](const auto& a, const auto& b) {
-        return std::abs(a.range_m - los_m) < std::abs(b.range_m - los_m);
-      });
-      los->range_m = los_m + 0.02;
-      los->amplitude = 0.1 * *los->amplitude;
-    }
-    const auto step = tracker.Step(samples[k].t_s, ranges);
-    if (k == 60) {
-      return std::any_of(step.associations.begin(), step.associations.end(),
-                         [&](const SlamAssociation& a) { return a.va_id == los_id; });
-    }
-  }
-  return false;
+  const int los_id = vas[0].id;  // anchor 0 itself: a VA set lists each anchor before its VAs
+  const auto step = RunToStep(options, vas, vas, 5, 60, [&](std::vector<core::AnchorRanges>& ranges, const Vec2& p_m) {
+    // The LOS is blocked: in its place a diffuse-multipath peak 2 cm later at a tenth of the
+    // amplitude - inside every range gate.
+    const double los_m = (vas[los_id].position_m - p_m).norm();
+    auto& list = ranges[0].ranges;
+    const auto los = std::min_element(list.begin(), list.end(), [&](const auto& a, const auto& b) {
+      return std::abs(a.range_m - los_m) < std::abs(b.range_m - los_m);
+    });
+    los->range_m = los_m + 0.02;
+    los->amplitude = 0.1 * *los->amplitude;
+  });
+  return std::any_of(step.associations.begin(), step.associations.end(),
+                     [&](const SlamAssociation& a) { return a.va_id == los_id; });
 }
 
 TEST(SlamTracker, AmplitudeGateRejectsAWeakStandInForABlockedLos) {
@@ -148,42 +152,24 @@ TEST(SlamTracker, AmplitudeGateRejectsAWeakStandInForABlockedLos) {
   EXPECT_TRUE(AssociatesAWeakLosStandIn(0.0));  // without the gate the range test alone accepts it
 }
 
-// The anchors-only loop up to step k with anchor 0's LOS range taken out at step k (blocked) or
-// left in: the associations of that step.
-std::vector<SlamAssociation> StepWithLos(bool los_blocked, std::size_t k, Vec2* agent_m) {
+TEST(SlamTracker, ShadowConeWeakensOnlyTheDiscoveredVasBehindABlockedAnchor) {
+  // Step 150 is on the loop's westward leg at (2, 4.5): anchor 0 (1, 5) lies 153 deg off the
+  // x axis, its west-wall VA (-1, 5) 17 deg from that, its north-wall VA (1, 7) 42 deg away.
+  constexpr std::size_t kStep = 150;
   const auto plan = mint::testing::EmptySquareRoom();
   const auto anchors_only = mint::testing::SquareRoomVas(plan, 0);
   const auto truth = mint::testing::SquareRoomVas(plan, 1);
   SlamOptions options;  // shadow cone 30 deg, 5 cm
   options.prior_visibility = false;
-  SlamTracker tracker(options, anchors_only, plan, kSigma1M);
-  const auto samples = Loop();
-  tracker.Initialize(samples.front().t_s, samples.front().position_m);
-  core::Rng rng(4, 0);
-  for (std::size_t i = 1; i <= k; ++i) {
-    auto ranges = MeasureRanges(truth, plan, samples[i].position_m, MeasurementModel{}, rng);
-    if (i == k && los_blocked) {
-      const double los_m = (anchors_only[0].position_m - samples[i].position_m).norm();
-      std::erase_if(ranges[0].ranges, [&](const core::RangeMeasurement& r) { return std::abs(r.range_m - los_m) < 0.1; });
-    }
-    const auto step = tracker.Step(samples[i].t_s, ranges);
-    if (i == k) {
-      *agent_m = step.position_m;
-      return step.associations;
-    }
-  }
-  return {};
-}
-
-TEST(SlamTracker, ShadowConeWeakensOnlyTheDiscoveredVasBehindABlockedAnchor) {
-  // Step 150 is on the loop's westward leg at (2, 4.5): anchor 0 (1, 5) lies 153 deg off the
-  // x axis, its west-wall VA (-1, 5) 17 deg from that, its north-wall VA (1, 7) 42 deg away.
-  constexpr std::size_t kStep = 150;
-  Vec2 agent_m;
-  const auto blocked = StepWithLos(true, kStep, &agent_m);
-  const auto open = StepWithLos(false, kStep, &agent_m);
-  const auto plan = mint::testing::EmptySquareRoom();
-  const auto truth = mint::testing::SquareRoomVas(plan, 1);
+  const auto block_los = [&](std::vector<core::AnchorRanges>& ranges, const Vec2& p_m) {
+    const double los_m = (anchors_only[0].position_m - p_m).norm();
+    std::erase_if(ranges[0].ranges, [&](const core::RangeMeasurement& r) { return std::abs(r.range_m - los_m) < 0.1; });
+  };
+  const auto step_blocked = RunToStep(options, anchors_only, truth, 4, kStep, block_los);
+  const auto step_open = RunToStep(options, anchors_only, truth, 4, kStep, [](auto&, const Vec2&) {});
+  const auto& blocked = step_blocked.associations;
+  const auto& open = step_open.associations;
+  const Vec2 agent_m = step_open.position_m;
   const Vec2 to_anchor = (truth[0].position_m - agent_m).normalized();
   const double shadow_m2 = SlamOptions{}.shadow_sigma_m * SlamOptions{}.shadow_sigma_m;
   int inside = 0, outside = 0;
