@@ -181,6 +181,7 @@ methods::slam::SlamOptions ReadSlam(YamlMap m, std::size_t walls) {
   o.discovery = ReadDiscovery(m.OptionalMap("discovery"));
   o.shadow_cone_deg = m.NumberInRange("shadow_cone_deg", o.shadow_cone_deg, 0.0, 180.0, "deg");
   o.shadow_sigma_m = m.NumberInRange("shadow_sigma_m", o.shadow_sigma_m, 1e-9, kHuge, "m");
+  o.los_reacquire_m = m.NumberInRange("los_reacquire_m", o.los_reacquire_m, 0.0, kHuge, "m");
   o.recovery = ReadRecovery(m.OptionalMap("recovery"));
   m.RejectUnknownKeys();
   Check(o, m);

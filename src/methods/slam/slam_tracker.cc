@@ -32,6 +32,9 @@ std::vector<std::string> Validate(const SlamOptions& options) {
   positive(options.prior_va_sigma_m, "prior_va_sigma_m", "m");
   positive(options.va_filter_sigma_m, "va_filter_sigma_m", "m");
   positive(options.shadow_sigma_m, "shadow_sigma_m", "m");
+  if (!(options.los_reacquire_m >= 0.0) || !std::isfinite(options.los_reacquire_m)) {
+    problems.push_back("los_reacquire_m must be >= 0 m");
+  }
   if (!(options.shadow_cone_deg >= 0.0 && options.shadow_cone_deg <= 180.0)) {
     problems.push_back("shadow_cone_deg must be in [0, 180] deg");
   }
@@ -201,6 +204,16 @@ std::vector<SlamTracker::Pairing> SlamTracker::Associate(const Reference& refere
     if (options_.amplitude_gate_probability > 0.0) {
       for (std::size_t k = 0; k < candidates.size(); ++k) laws[k] = GateLaw(candidates[k], at_m, expected_m[k]);
     }
+    // LOS re-acquisition (SlamOptions::los_reacquire_m): a missed LOS gets the wider window,
+    // but only where its amplitude law can vouch for the range.
+    std::vector<double> cutoff_m(candidates.size(), options_.cutoff_m);
+    double widest_cutoff_m = options_.cutoff_m;
+    for (std::size_t k = 0; k < candidates.size(); ++k) {
+      if (los_only && map_[candidates[k]].los_missed && laws[k]) {
+        cutoff_m[k] = std::max(options_.cutoff_m, options_.los_reacquire_m);
+        widest_cutoff_m = std::max(widest_cutoff_m, cutoff_m[k]);
+      }
+    }
     const auto n_expected = static_cast<Eigen::Index>(candidates.size());
     const auto n_measured = static_cast<Eigen::Index>(anchor.ranges.size());
     Eigen::MatrixXd distance(n_expected, n_measured);
@@ -211,20 +224,29 @@ std::vector<SlamTracker::Pairing> SlamTracker::Associate(const Reference& refere
         const double nu = z.range_m - expected_m[k];
         // The amplitude test (a series) only for pairs the range tests let through.
         const bool range_plausible =
-            std::abs(nu) < options_.cutoff_m && estimation::InsideChi2Gate(nu, gate_variance_m2[k], gate);
-        const bool amplitude_plausible =
-            range_plausible && (!laws[k] || !z.amplitude ||
-                                estimation::RicianCdf(*z.amplitude, *laws[k]) >= options_.amplitude_gate_probability);
+            std::abs(nu) < cutoff_m[k] && estimation::InsideChi2Gate(nu, gate_variance_m2[k], gate);
+        // In the widened window the law is scaled to the range itself (the free-space loss of the
+        // path it would be: the expected range can be 0.4 m off), and a range without an
+        // amplitude is not taken.
+        const bool widened = cutoff_m[k] > options_.cutoff_m;
+        const auto law = widened ? GateLaw(candidates[k], at_m, z.range_m) : laws[k];
+        bool amplitude_plausible = range_plausible;
+        if (range_plausible && law) {
+          amplitude_plausible = z.amplitude ? estimation::RicianCdf(*z.amplitude, *law) >=
+                                                  options_.amplitude_gate_probability
+                                            : !widened;
+        }
         distance(r, j) = amplitude_plausible ? std::abs(nu) : std::numeric_limits<double>::infinity();
       }
     }
-    const std::vector<int> assignment = estimation::AssociateWithCutoff(distance, options_.cutoff_m);
+    const std::vector<int> assignment = estimation::AssociateWithCutoff(distance, widest_cutoff_m);
     for (std::size_t k = 0; k < candidates.size(); ++k) {
       if (assignment[k] < 0) continue;
       Pairing p;
       p.anchor_index = anchor.anchor_index;
       p.map_index = candidates[k];
       p.measurement = &anchor.ranges[static_cast<std::size_t>(assignment[k])];
+      p.reacquired = std::abs(p.measurement->range_m - expected_m[k]) >= options_.cutoff_m;
       for (std::size_t o = 0; o < candidates.size(); ++o) {
         if (o != k && std::abs(expected_m[o] - expected_m[k]) < options_.variance.overlap_distance_m) {
           p.overlapped = true;
@@ -304,7 +326,9 @@ SlamStepResult SlamTracker::Step(double t_s, std::span<const core::AnchorRanges>
     // Stage 1 (as in MINT): the anchors' LOS ranges alone give the reference for stage 2.
     auto los = Associate(reference, measurements, true, 0.0);
     std::erase_if(los, [&](const Pairing& p) { return Filtered(p.map_index); });
-    if (options_.shadow_cone_deg > 0.0) blocked_m = BlockedAnchors(los);
+    result.reacquired_los = static_cast<int>(std::count_if(los.begin(), los.end(), [](const Pairing& p) { return p.reacquired; }));
+    NoteLosMisses(los);
+    if (options_.shadow_cone_deg > 0.0) blocked_m = BlockedAnchors();
     if (!los.empty()) {
       std::vector<double> variances;
       for (const auto& p : los) variances.push_back(CurrentVariance(map_[p.map_index].va.id));
@@ -408,13 +432,18 @@ SlamStepResult SlamTracker::Step(double t_s, std::span<const core::AnchorRanges>
   return result;
 }
 
-std::vector<Vec2> SlamTracker::BlockedAnchors(const std::vector<Pairing>& los) const {
+void SlamTracker::NoteLosMisses(const std::vector<Pairing>& los) {
+  for (auto& e : map_) {
+    if (e.va.origin != MapVaOrigin::kAnchor) continue;
+    e.los_missed =
+        std::none_of(los.begin(), los.end(), [&](const Pairing& p) { return p.anchor_index == e.va.anchor_index; });
+  }
+}
+
+std::vector<Vec2> SlamTracker::BlockedAnchors() const {
   std::vector<Vec2> blocked_m;
   for (const auto& e : map_) {
-    if (e.va.origin != MapVaOrigin::kAnchor) continue;
-    const bool seen =
-        std::any_of(los.begin(), los.end(), [&](const Pairing& p) { return p.anchor_index == e.va.anchor_index; });
-    if (!seen) blocked_m.push_back(e.prior_m);
+    if (e.va.origin == MapVaOrigin::kAnchor && e.los_missed) blocked_m.push_back(e.prior_m);
   }
   return blocked_m;
 }

@@ -1,11 +1,13 @@
 // SPDX-License-Identifier: MIT
 // The SLAM tracker on synthetic unlabeled ranges in the 6 m x 6 m square room of
 // methods/mint/square_room.h: the known-VA baseline, discovery from the anchors alone on clean
-// ranges, lazy state augmentation, the amplitude gate, the shadow cone and option validation.
+// ranges, lazy state augmentation, the amplitude gate, the shadow cone, the LOS re-acquisition
+// and option validation.
 #include "mirage/methods/slam/slam_tracker.h"
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -105,17 +107,21 @@ TEST(SlamTracker, WithoutDiscoveryTheMapHoldsOnlyTheAnchors) {
 }
 
 // Runs the loop up to step k with `known` in the tracker and `truth` producing the ranges; at
-// step k `edit` changes the ranges first. Returns what step k produced.
-template <typename Edit>
+// step k `edit` changes the ranges first, at step k - 1 `edit_previous`. Returns what step k
+// produced.
+using Edit = std::function<void(std::vector<core::AnchorRanges>&, const Vec2&)>;
 SlamStepResult RunToStep(const SlamOptions& options, const geometry::VirtualAnchorSet& known,
-                         const geometry::VirtualAnchorSet& truth, std::uint64_t seed, std::size_t k, Edit edit) {
+                         const geometry::VirtualAnchorSet& truth, std::uint64_t seed, std::size_t k, const Edit& edit,
+                         const Edit& edit_previous = [](auto&, const Vec2&) {}) {
   const auto plan = mint::testing::EmptySquareRoom();
   SlamTracker tracker(options, known, plan, kSigma1M);
   const auto samples = Loop();
   tracker.Initialize(samples.front().t_s, samples.front().position_m);
   core::Rng rng(seed, 0);
   for (std::size_t i = 1; i < k; ++i) {
-    tracker.Step(samples[i].t_s, MeasureRanges(truth, plan, samples[i].position_m, MeasurementModel{}, rng));
+    auto ranges = MeasureRanges(truth, plan, samples[i].position_m, MeasurementModel{}, rng);
+    if (i + 1 == k) edit_previous(ranges, samples[i].position_m);
+    tracker.Step(samples[i].t_s, ranges);
   }
   auto ranges = MeasureRanges(truth, plan, samples[k].position_m, MeasurementModel{}, rng);
   edit(ranges, samples[k].position_m);
@@ -150,6 +156,46 @@ bool AssociatesAWeakLosStandIn(double amplitude_gate_probability) {
 TEST(SlamTracker, AmplitudeGateRejectsAWeakStandInForABlockedLos) {
   EXPECT_FALSE(AssociatesAWeakLosStandIn(1e-3));
   EXPECT_TRUE(AssociatesAWeakLosStandIn(0.0));  // without the gate the range test alone accepts it
+}
+
+// Whether the tracker takes anchor 0's LOS at step 60 of the loop back at stage 1 when it
+// arrives 0.3 m later than expected (as for a track 0.3 m off after a shadow), at
+// `amplitude_factor` of its amplitude, with the LOS missing at step 59 if `missed_before`.
+// (Here the rest of the map is right, so stage 2 overrules the pulled reference; in the
+// seminar room it is the map that is off.)
+bool ReacquiresLos(double los_reacquire_m, bool missed_before, double amplitude_factor) {
+  const auto plan = mint::testing::EmptySquareRoom();
+  const auto vas = mint::testing::SquareRoomVas(plan, 1);
+  SlamOptions options;  // amplitude gate on (1e-3)
+  options.prior_max_order = 1;
+  options.discovery.enabled = false;
+  options.los_reacquire_m = los_reacquire_m;
+  const auto nearest_los = [&](std::vector<core::AnchorRanges>& ranges, const Vec2& p_m) {
+    const double los_m = (vas[0].position_m - p_m).norm();  // vas[0]: anchor 0 itself
+    auto& list = ranges[0].ranges;
+    return std::min_element(list.begin(), list.end(), [&](const auto& a, const auto& b) {
+      return std::abs(a.range_m - los_m) < std::abs(b.range_m - los_m);
+    });
+  };
+  const Edit miss = [&](std::vector<core::AnchorRanges>& ranges, const Vec2& p_m) {
+    if (missed_before) ranges[0].ranges.erase(nearest_los(ranges, p_m));
+  };
+  const Edit late = [&](std::vector<core::AnchorRanges>& ranges, const Vec2& p_m) {
+    const auto los = nearest_los(ranges, p_m);
+    los->range_m += 0.3;
+    los->amplitude = amplitude_factor * *los->amplitude;
+  };
+  const auto step = RunToStep(options, vas, vas, 5, 60, late, miss);
+  EXPECT_LE(step.reacquired_los, 1) << "anchor 1's LOS was never missed";
+  return step.reacquired_los == 1;
+}
+
+TEST(SlamTracker, LosReacquisitionTakesAStrongLosOutsideTheCutoffOnlyAfterAMiss) {
+  EXPECT_TRUE(ReacquiresLos(0.4, true, 1.0)) << "a missed LOS returning 0.3 m off is searched 0.4 m wide";
+  EXPECT_FALSE(ReacquiresLos(0.25, true, 1.0)) << "0.3 m is outside a 0.25 m window";
+  EXPECT_FALSE(ReacquiresLos(0.0, true, 1.0)) << "off: the 0.15 m cut-off alone";
+  EXPECT_FALSE(ReacquiresLos(0.4, false, 1.0)) << "the LOS was there a step ago: no wider window";
+  EXPECT_FALSE(ReacquiresLos(0.4, true, 0.1)) << "a range at a tenth of the LOS amplitude is no LOS";
 }
 
 TEST(SlamTracker, ShadowConeWeakensOnlyTheDiscoveredVasBehindABlockedAnchor) {
@@ -205,11 +251,13 @@ TEST(SlamTracker, ShadowConeWeakensOnlyTheDiscoveredVasBehindABlockedAnchor) {
 TEST(SlamTracker, ValidateNamesTheBadOption) {
   SlamOptions options;
   options.cutoff_m = 0.0;
+  options.los_reacquire_m = -0.1;
   options.discovery.group_size = 2;
   const auto problems = Validate(options);
-  ASSERT_EQ(problems.size(), 2u);
+  ASSERT_EQ(problems.size(), 3u);
   EXPECT_EQ(problems[0].rfind("cutoff_m", 0), 0u);
-  EXPECT_EQ(problems[1].rfind("discovery.group_size", 0), 0u);
+  EXPECT_EQ(problems[1].rfind("los_reacquire_m", 0), 0u);
+  EXPECT_EQ(problems[2].rfind("discovery.group_size", 0), 0u);
 }
 
 }  // namespace

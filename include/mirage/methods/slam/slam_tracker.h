@@ -27,8 +27,8 @@
 //   are never filtered: one bad window behind an obstacle would lose the LOS for good.
 // - mirage additions, each an option documented below and in docs/methods/slam.md: the amplitude
 //   gate, the VA filter that keeps associating, the batch check before promotion, the shadow
-//   cone (blocked-LOS stand-ins of discovered VAs weakened) and track-loss recovery
-//   (methods/slam/track_recovery).
+//   cone (blocked-LOS stand-ins of discovered VAs weakened), the LOS re-acquisition (a missed
+//   LOS searched wider, amplitude-checked) and track-loss recovery (methods/slam/track_recovery).
 #pragma once
 
 #include <optional>
@@ -110,6 +110,18 @@ struct SlamOptions {
   double shadow_cone_deg = 30.0;
   /// Standard deviation added to a shadowed range (m), > 0: the stand-in's typical lag. 5 cm.
   double shadow_sigma_m = 0.05;
+  /// LOS re-acquisition window (mirage; m, >= 0, no effect unless above cutoff_m). When an
+  /// anchor's LOS found no range at the last step (stage 1: blocked, missed, gated or filtered),
+  /// its LOS is searched this far from the predicted range instead of cutoff_m, and a range
+  /// there is taken only if its amplitude passes the amplitude gate under the LOS's own law
+  /// scaled to that range (so only with the amplitude gate on and a fitted law). Why: in an
+  /// obstacle's shadow the track drifts along the other anchor's range circle, 20-60 cm in the
+  /// seminar room; once it is more than cutoff_m off, the returning LOS - the strongest path,
+  /// with an exactly known anchor - falls outside the window for good and the track stays
+  /// off until the recovery restarts it, 50+ steps later. 0.4 m: above the drift of most
+  /// shadowed runs, and measured 0.3-0.6 m all help; at 1 m other strong paths were taken for
+  /// the LOS (docs/methods/slam.md).
+  double los_reacquire_m = 0.4;
   /// Covariance update of the EKF (mirage): the standard form P - K H P halves the O(n^2 m)
   /// cost that dominates a step with tens of VAs in the state (bench/methods/slam_step_bench.cc
   /// measures both); the Joseph form as in MINT is the alternative.
@@ -167,6 +179,8 @@ struct SlamStepResult {
   int discovered = 0;   ///< VAs promoted into the state at this step
   int state_vas = 0;    ///< VAs in the state after the step
   bool relocalized = false;  ///< the track was lost and restarted at a recovered position
+  /// Anchors whose missed LOS was taken back in the widened window at stage 1 (los_reacquire_m).
+  int reacquired_los = 0;
 };
 
 /// Id of the first discovered VA (prior VA ids are below it).
@@ -201,6 +215,7 @@ class SlamTracker {
     const core::RangeMeasurement* measurement = nullptr;
     bool overlapped = false;
     bool shadowed = false;  // in the shadow cone of a blocked LOS
+    bool reacquired = false;  // a missed LOS taken outside cutoff_m (los_reacquire_m)
   };
   struct Reference {
     Vec2 position_m = Vec2::Zero();
@@ -220,8 +235,10 @@ class SlamTracker {
   estimation::UpdateResult Update(estimation::State& state, const std::vector<Pairing>& pairings,
                                   const std::vector<double>& variances_m2) const;
   void AddToState(std::size_t map_index);
-  // Shadow cone: positions of the anchors without a LOS pairing at stage 1.
-  [[nodiscard]] std::vector<Vec2> BlockedAnchors(const std::vector<Pairing>& los) const;
+  // Marks the anchors without a LOS pairing at stage 1 (Entry::los_missed).
+  void NoteLosMisses(const std::vector<Pairing>& los);
+  // Shadow cone: positions of the anchors whose LOS was missed at this step.
+  [[nodiscard]] std::vector<Vec2> BlockedAnchors() const;
   // Shadow cone: flags the pairings of VAs without a visibility region whose path arrives at
   // at_m from within the cone around a blocked anchor's direction.
   void MarkShadowed(std::vector<Pairing>& pairings, std::span<const Vec2> blocked_m, const Vec2& at_m) const;
@@ -240,6 +257,9 @@ class SlamTracker {
     std::optional<estimation::RicianLaw> amplitude_law;
     Vec2 amplitude_law_at_m = Vec2::Zero();  ///< agent position of that estimate
     double amplitude_law_range_m = 0.0;       ///< expected range there
+    /// An anchor whose LOS found no range at the last step's stage 1 (LOS re-acquisition and
+    /// shadow cone).
+    bool los_missed = false;
   };
 
   SlamOptions options_;
