@@ -219,6 +219,7 @@ std::vector<SlamTracker::Pairing> SlamTracker::Associate(const Reference& refere
     Eigen::MatrixXd distance(n_expected, n_measured);
     for (Eigen::Index r = 0; r < n_expected; ++r) {
       const auto k = static_cast<std::size_t>(r);
+      const bool widened = cutoff_m[k] > options_.cutoff_m;
       for (Eigen::Index j = 0; j < n_measured; ++j) {
         const auto& z = anchor.ranges[static_cast<std::size_t>(j)];
         const double nu = z.range_m - expected_m[k];
@@ -228,7 +229,6 @@ std::vector<SlamTracker::Pairing> SlamTracker::Associate(const Reference& refere
         // In the widened window the law is scaled to the range itself (the free-space loss of the
         // path it would be: the expected range can be 0.4 m off), and a range without an
         // amplitude is not taken.
-        const bool widened = cutoff_m[k] > options_.cutoff_m;
         const auto law = widened ? GateLaw(candidates[k], at_m, z.range_m) : laws[k];
         bool amplitude_plausible = range_plausible;
         if (range_plausible && law) {
@@ -326,7 +326,8 @@ SlamStepResult SlamTracker::Step(double t_s, std::span<const core::AnchorRanges>
     // Stage 1 (as in MINT): the anchors' LOS ranges alone give the reference for stage 2.
     auto los = Associate(reference, measurements, true, 0.0);
     std::erase_if(los, [&](const Pairing& p) { return Filtered(p.map_index); });
-    result.reacquired_los = static_cast<int>(std::count_if(los.begin(), los.end(), [](const Pairing& p) { return p.reacquired; }));
+    result.reacquired_los =
+        static_cast<int>(std::count_if(los.begin(), los.end(), [](const Pairing& p) { return p.reacquired; }));
     NoteLosMisses(los);
     if (options_.shadow_cone_deg > 0.0) blocked_m = BlockedAnchors();
     if (!los.empty()) {
