@@ -127,6 +127,7 @@ methods::slam::TrackRecoveryOptions ReadRecovery(YamlMap m) {
 methods::slam::DiscoveryOptions ReadDiscovery(YamlMap m) {
   methods::slam::DiscoveryOptions o;
   o.enabled = m.Boolean("enabled", o.enabled);
+  o.max_agent_sigma_m = m.NumberInRange("max_agent_sigma_m", o.max_agent_sigma_m, 1e-9, kHuge, "m");
   o.group_gate_m = m.NumberInRange("group_gate_m", o.group_gate_m, 1e-9, kHuge, "m");
   o.group_max_gap_steps = m.Integer("group_max_gap_steps", o.group_max_gap_steps, 0, 100000);
   o.group_size = m.Integer("group_size", o.group_size, 3, 100000);

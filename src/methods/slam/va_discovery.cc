@@ -21,6 +21,7 @@ std::vector<std::string> Validate(const DiscoveryOptions& o) {
   const auto at_least = [&](int v, int min, const char* name) {
     if (v < min) problems.push_back(std::string(name) + " must be >= " + std::to_string(min));
   };
+  positive(o.max_agent_sigma_m, "max_agent_sigma_m");
   positive(o.group_gate_m, "group_gate_m");
   at_least(o.group_max_gap_steps, 0, "group_max_gap_steps");
   at_least(o.group_size, 3, "group_size");
@@ -367,9 +368,15 @@ void VaDiscovery::UpdateGroups(int step, int anchor_index, const Vec2& agent_m,
 }
 
 std::vector<DiscoveredVa> VaDiscovery::Process(int step, int anchor_index, const Vec2& agent_m,
+                                               const Eigen::Matrix2d& agent_covariance_m2,
                                                std::span<const core::RangeMeasurement> unassociated,
                                                std::span<const Vec2> known_vas_m, double cutoff_m) {
   if (!options_.enabled) return {};
+  // The largest eigenvalue of the agent's position covariance: its worst direction.
+  const double worst_variance_m2 = Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(agent_covariance_m2,
+                                                                                 Eigen::EigenvaluesOnly)
+                                       .eigenvalues()(1);
+  if (!(worst_variance_m2 <= options_.max_agent_sigma_m * options_.max_agent_sigma_m)) return {};
   const std::vector<bool> used = UpdateCandidates(step, anchor_index, agent_m, unassociated, cutoff_m);
   auto promoted = Promote(step, anchor_index);
   UpdateGroups(step, anchor_index, agent_m, unassociated, used, known_vas_m);

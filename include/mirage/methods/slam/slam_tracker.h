@@ -28,7 +28,8 @@
 // - mirage additions, each an option documented below and in docs/methods/slam.md: the amplitude
 //   gate, the VA filter that keeps associating, the batch check before promotion, the shadow
 //   cone (blocked-LOS stand-ins of discovered VAs weakened), the LOS re-acquisition (a missed
-//   LOS searched wider, amplitude-checked) and track-loss recovery (methods/slam/track_recovery).
+//   LOS searched wider, amplitude-checked), track-loss recovery (methods/slam/track_recovery)
+//   and discovery only from a well-localised agent (DiscoveryOptions::max_agent_sigma_m).
 #pragma once
 
 #include <optional>

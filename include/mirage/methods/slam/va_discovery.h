@@ -41,6 +41,14 @@ struct DiscoveryOptions {
   double group_gate_m = 0.07;
   /// A group that misses more than this many consecutive steps is dropped (>= 0) [GAP].
   int group_max_gap_steps = 3;
+  /// A step's ranges are used only while the agent's position standard deviation along its worst
+  /// direction is at most this (m), > 0 (mirage). Groups and candidates store the estimated agent
+  /// positions as exact (as the paper's past-measurement rows do, digest Sec. 2.7.3); from a
+  /// poorly localised agent (one LOS blocked, the other along the same line) they build
+  /// candidates on the wrong side, and the promoted VA then holds the track there (seminar room,
+  /// seed 4: one diverged run of 25, gone at 0.1 m; 0.05 m also drops good steps and costs a
+  /// diverged run on trajectory 2).
+  double max_agent_sigma_m = 0.1;
   /// Ranges in a group before the range-Bancroft initialisation (>= 3). The thesis uses 3
   /// (Tab. 4.1); with 5 cm steps three points span 10 cm and the pair lands metres off, so 10
   /// (about 0.5 m of walking) as the digest suggests (5-10).
@@ -141,9 +149,11 @@ class VaDiscovery {
   explicit VaDiscovery(const DiscoveryOptions& options);
 
   /// Processes the unassociated ranges of one anchor at step `step`, measured from the agent's
-  /// current estimate agent_m. known_vas_m are the anchor's active VAs (for duplicate
-  /// suppression). Returns the candidates promoted at this step.
+  /// current estimate agent_m with position covariance agent_covariance_m2 (a step with the agent
+  /// worse than max_agent_sigma_m is skipped). known_vas_m are the anchor's active VAs (for
+  /// duplicate suppression). Returns the candidates promoted at this step.
   std::vector<DiscoveredVa> Process(int step, int anchor_index, const Vec2& agent_m,
+                                    const Eigen::Matrix2d& agent_covariance_m2,
                                     std::span<const core::RangeMeasurement> unassociated,
                                     std::span<const Vec2> known_vas_m, double cutoff_m);
 

@@ -1,0 +1,61 @@
+// SPDX-License-Identifier: MIT
+// End-to-end regression of the anchors-only SLAM example (examples/seminar_room_slam.yaml,
+// Leitinger et al.): simulated CIRs -> MPC extraction -> SLAM with only the two anchors known,
+// 5 runs per trajectory with the file's seed. Guards the issue-4 headline: p90 <= 6 cm on each
+// trajectory (README, 25 runs: about 4.5 cm) with no diverged run, and a discovered map whose
+// matched VAs are within 15 cm. The bound is the issue's target itself, not a widened one: with 5
+// runs of seed 1 the p90 is about 4.2 cm; without the shadow-stretch safeguards (shadow cone,
+// LOS re-acquisition, recovery) trajectory 2 reaches 22.6 cm with a diverged run, and with the
+// thesis's promotion rule 10 cm.
+#include <cstdio>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "mirage/io/scenario.h"
+#include "mirage/pipeline/mint_experiment.h"
+#include "mirage/pipeline/mint_summary.h"
+
+namespace mirage::pipeline {
+namespace {
+
+constexpr int kRuns = 5;
+constexpr double kP90Bound_m = 0.06;        // issue 4: p90 <= 0.06 m
+constexpr double kMatchedErrorBound_m = 0.15;  // issue 4: matched VAs within 0.15 m on average
+
+TEST(SeminarRoomSlam, AnchorsOnlyTracksWithinSixCentimetresAtP90AndMapsTrueVas) {
+  // Arrange
+  io::ScenarioOverrides overrides;
+  overrides.runs = kRuns;
+  overrides.threads = 0;  // all cores; the results do not depend on it
+  const io::Scenario scenario =
+      io::LoadScenario(std::string(MIRAGE_SOURCE_DIR) + "/examples/seminar_room_slam.yaml", overrides);
+  ASSERT_EQ(scenario.mint.method, Method::kSlam);
+  ASSERT_EQ(scenario.mint.slam.prior_max_order, 0) << "the example must start from the anchors alone";
+
+  // Act
+  const auto result = RunMintExperiment(scenario.mint);
+  const MintSummary summary = Summarize(scenario.mint, result);
+
+  // Assert
+  EXPECT_EQ(summary.overall.runs, 2 * kRuns);
+  for (const auto& t : summary.trajectories) {
+    ASSERT_TRUE(t.map.has_value()) << t.name;
+    const MapSummary& map = *t.map;
+    std::printf("%s (seed %llu, %d runs): p90 %.4f m, diverged %d; map per run: %.1f scored, %.1f matched, "
+                "%.1f false, matched error %.3f m\n",
+                t.name.c_str(), static_cast<unsigned long long>(scenario.mint.seed), t.runs, t.error.p90,
+                t.diverged_runs, map.estimated_mean, map.matched_mean, map.false_mean,
+                map.matched_error_mean_m.value_or(-1.0));
+    EXPECT_LE(t.error.p90, kP90Bound_m) << t.name;
+    EXPECT_EQ(t.diverged_runs, 0) << t.name;
+    // The map: true VAs found (each run discovers 2-4), few false ones, and accurate.
+    EXPECT_GE(map.matched_mean, 2.0) << t.name;
+    EXPECT_LE(map.false_mean, 1.0) << t.name;
+    ASSERT_TRUE(map.matched_error_mean_m.has_value()) << t.name;
+    EXPECT_LE(*map.matched_error_mean_m, kMatchedErrorBound_m) << t.name;
+  }
+}
+
+}  // namespace
+}  // namespace mirage::pipeline

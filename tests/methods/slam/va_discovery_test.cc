@@ -1,0 +1,111 @@
+// SPDX-License-Identifier: MIT
+// The VA discovery on its own: the ranges of one reflection seen from an L-shaped walk, fed in as
+// the tracker feeds them (one anchor, the ranges nobody associated, the agent's estimate and its
+// covariance). A first-order VA is promoted on the right side of the walk once the walk turns, and
+// nothing is learnt from steps at which the agent is poorly localised.
+#include "mirage/methods/slam/va_discovery.h"
+
+#include <algorithm>
+#include <optional>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "mirage/core/rng.h"
+#include "mirage/geometry/trajectory.h"
+
+namespace mirage::methods::slam {
+namespace {
+
+// An anchor at (1, 2) and the wall x = 0: the VA is its mirror image (-1, 2).
+const Vec2 kVa_m(-1.0, 2.0);
+constexpr double kCutoff_m = 0.15;
+constexpr double kRangeSigma_m = 0.01;
+
+// 1.5 m east, then 1.5 m north, 5 cm steps: the mirror ambiguity about the first leg
+// (y = 1, mirror image (-1, 0)) is resolved by the second.
+std::vector<geometry::TrajectorySample> Walk() {
+  const std::vector<Vec2> waypoints{Vec2(1.0, 1.0), Vec2(2.5, 1.0), Vec2(2.5, 2.5)};
+  return geometry::SampleTrajectory(waypoints, 0.5, 0.1);
+}
+
+struct Outcome {
+  std::vector<DiscoveredVa> promoted;
+  int most_groups = 0;
+  std::size_t most_candidates = 0;
+};
+
+// Runs the walk; covariance_at(step) is the agent's position covariance the tracker would pass.
+template <typename Covariance>
+Outcome RunWalk(const DiscoveryOptions& options, Covariance covariance_at) {
+  VaDiscovery discovery(options);
+  core::Rng rng(7, 0);
+  Outcome out;
+  const auto walk = Walk();
+  for (std::size_t k = 0; k < walk.size(); ++k) {
+    const Vec2 agent_m = walk[k].position_m;
+    const std::vector<core::RangeMeasurement> ranges{
+        {(kVa_m - agent_m).norm() + rng.Normal(0.0, kRangeSigma_m), std::nullopt}};
+    const int step = static_cast<int>(k);
+    for (auto& va : discovery.Process(step, 0, agent_m, covariance_at(step), ranges, {}, kCutoff_m)) {
+      out.promoted.push_back(std::move(va));
+    }
+    out.most_groups = std::max(out.most_groups, discovery.group_count());
+    out.most_candidates = std::max(out.most_candidates, discovery.candidates().size());
+  }
+  return out;
+}
+
+Eigen::Matrix2d Isotropic(double sigma_m) { return Eigen::Matrix2d::Identity() * sigma_m * sigma_m; }
+
+TEST(VaDiscovery, PromotesTheVaOnTheRightSideOnceTheWalkTurns) {
+  const Outcome out = RunWalk(DiscoveryOptions{}, [](int) { return Isotropic(0.01); });
+  ASSERT_EQ(out.promoted.size(), 1u);
+  const DiscoveredVa& va = out.promoted.front();
+  EXPECT_EQ(va.anchor_index, 0);
+  EXPECT_LT((va.position_m - kVa_m).norm(), 0.05) << va.position_m.transpose();
+  EXPECT_GE(va.samples.size(), static_cast<std::size_t>(DiscoveryOptions{}.min_measurements));
+}
+
+TEST(VaDiscovery, LearnsNothingWhileTheAgentIsPoorlyLocalised) {
+  DiscoveryOptions options;
+  options.max_agent_sigma_m = 0.1;
+  // Worse than the limit along one direction only: the worst direction decides.
+  Eigen::Matrix2d elongated = Eigen::Matrix2d::Zero();
+  elongated(0, 0) = 0.01 * 0.01;
+  elongated(1, 1) = 0.15 * 0.15;
+  const Outcome out = RunWalk(options, [&](int) { return elongated; });
+  EXPECT_TRUE(out.promoted.empty());
+  EXPECT_EQ(out.most_groups, 0);
+  EXPECT_EQ(out.most_candidates, 0u);
+  // Just inside the limit, the same walk promotes the VA.
+  EXPECT_EQ(RunWalk(options, [](int) { return Isotropic(0.09); }).promoted.size(), 1u);
+}
+
+TEST(VaDiscovery, StepsOfAPoorlyLocalisedAgentAreLeftOutOfTheSamples) {
+  // Lost for the 10 steps after the turn: the VA is still found, from the other steps only.
+  const int turn_step = 30;
+  const auto covariance_at = [&](int step) {
+    return step > turn_step && step <= turn_step + 10 ? Isotropic(0.3) : Isotropic(0.01);
+  };
+  const Outcome out = RunWalk(DiscoveryOptions{}, covariance_at);
+  ASSERT_EQ(out.promoted.size(), 1u);
+  const auto walk = Walk();
+  for (const auto& s : out.promoted.front().samples) {
+    for (int step = turn_step + 1; step <= turn_step + 10; ++step) {
+      EXPECT_GT((s.agent_m - walk[static_cast<std::size_t>(step)].position_m).norm(), 1e-9)
+          << "a sample from lost step " << step;
+    }
+  }
+}
+
+TEST(VaDiscovery, ValidateNamesTheAgentSigmaLimit) {
+  DiscoveryOptions options;
+  options.max_agent_sigma_m = 0.0;
+  const auto problems = Validate(options);
+  ASSERT_EQ(problems.size(), 1u);
+  EXPECT_NE(problems.front().find("max_agent_sigma_m"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace mirage::methods::slam
