@@ -383,10 +383,12 @@ SlamStepResult SlamTracker::Step(double t_s, std::span<const core::AnchorRanges>
   result.update = Update(state_, updating, variances);
   result.relocalized = RecoverTrack(t_s, measurements);
 
-  // Discovery with the ranges nobody took, from the posterior agent position.
+  // Discovery with the ranges nobody took, from the posterior agent position; not at a restart,
+  // which has just cleared it and left the agent at its initial std.
   const Vec2 agent_m = state_.Mean({BlockKind::kPosition, 0});
   const Eigen::Matrix2d agent_covariance_m2 = state_.Covariance({BlockKind::kPosition, 0});
   for (const auto& anchor : measurements) {
+    if (result.relocalized) break;
     std::vector<core::RangeMeasurement> rest;
     for (const auto& range : anchor.ranges) {
       const bool taken = std::any_of(pairings.begin(), pairings.end(),
@@ -397,8 +399,9 @@ SlamStepResult SlamTracker::Step(double t_s, std::span<const core::AnchorRanges>
     for (std::size_t i = 0; i < map_.size(); ++i) {
       if (map_[i].va.anchor_index == anchor.anchor_index && !Filtered(i)) active_m.push_back(VaPosition(i));
     }
-    for (auto& found : discovery_.Process(step_, anchor.anchor_index, agent_m, agent_covariance_m2, rest, active_m,
-                                             options_.cutoff_m)) {
+    auto found_vas =
+        discovery_.Process(step_, anchor.anchor_index, agent_m, agent_covariance_m2, rest, active_m, options_.cutoff_m);
+    for (auto& found : found_vas) {
       // Lafer Eq. 4.7-4.9 with G_x = [I_2 0]: the new VA is correlated with everything the agent
       // position is, and P_new = P_pp + P_rls.
       const int p_offset = state_.layout().At({BlockKind::kPosition, 0}).offset;

@@ -372,11 +372,9 @@ std::vector<DiscoveredVa> VaDiscovery::Process(int step, int anchor_index, const
                                                std::span<const core::RangeMeasurement> unassociated,
                                                std::span<const Vec2> known_vas_m, double cutoff_m) {
   if (!options_.enabled) return {};
-  // The largest eigenvalue of the agent's position covariance: its worst direction.
-  const double worst_variance_m2 = Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(agent_covariance_m2,
-                                                                                 Eigen::EigenvaluesOnly)
-                                       .eigenvalues()(1);
-  if (!(worst_variance_m2 <= options_.max_agent_sigma_m * options_.max_agent_sigma_m)) return {};
+  // The agent's std along its worst direction: the largest eigenvalue of its position covariance.
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> agent_eig(agent_covariance_m2, Eigen::EigenvaluesOnly);
+  if (!(agent_eig.eigenvalues()(1) <= options_.max_agent_sigma_m * options_.max_agent_sigma_m)) return {};
   const std::vector<bool> used = UpdateCandidates(step, anchor_index, agent_m, unassociated, cutoff_m);
   auto promoted = Promote(step, anchor_index);
   UpdateGroups(step, anchor_index, agent_m, unassociated, used, known_vas_m);

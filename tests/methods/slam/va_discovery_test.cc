@@ -1,16 +1,21 @@
 // SPDX-License-Identifier: MIT
 // The VA discovery on its own: the ranges of one reflection seen from an L-shaped walk, fed in as
-// the tracker feeds them (one anchor, the ranges nobody associated, the agent's estimate and its
-// covariance). A first-order VA is promoted on the right side of the walk once the walk turns, and
-// nothing is learnt from steps at which the agent is poorly localised.
+// the tracker feeds them (one anchor, the ranges no active VA explains, the active VAs, the agent's
+// estimate and its covariance). A first-order VA is promoted on the right side of the walk once
+// the walk turns, and nothing is learnt from steps at which the agent is poorly localised.
 #include "mirage/methods/slam/va_discovery.h"
 
 #include <algorithm>
+#include <cmath>
 #include <optional>
+#include <string>
+#include <utility>
 #include <vector>
 
+#include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
+#include "mirage/core/constants.h"
 #include "mirage/core/rng.h"
 #include "mirage/geometry/trajectory.h"
 
@@ -24,13 +29,25 @@ constexpr double kRangeSigma_m = 0.01;
 
 // 1.5 m east, then 1.5 m north, 5 cm steps: the mirror ambiguity about the first leg
 // (y = 1, mirror image (-1, 0)) is resolved by the second.
+const Vec2 kCorner_m(2.5, 1.0);
 std::vector<geometry::TrajectorySample> Walk() {
-  const std::vector<Vec2> waypoints{Vec2(1.0, 1.0), Vec2(2.5, 1.0), Vec2(2.5, 2.5)};
+  const std::vector<Vec2> waypoints{Vec2(1.0, 1.0), kCorner_m, Vec2(2.5, 2.5)};
   return geometry::SampleTrajectory(waypoints, 0.5, 0.1);
+}
+
+// The step at the corner.
+int CornerStep() {
+  const auto walk = Walk();
+  for (std::size_t k = 0; k < walk.size(); ++k) {
+    if ((walk[k].position_m - kCorner_m).norm() < 1e-9) return static_cast<int>(k);
+  }
+  ADD_FAILURE() << "the walk misses its corner";
+  return -1;
 }
 
 struct Outcome {
   std::vector<DiscoveredVa> promoted;
+  std::vector<int> promoted_steps;
   int most_groups = 0;
   std::size_t most_candidates = 0;
 };
@@ -41,14 +58,21 @@ Outcome RunWalk(const DiscoveryOptions& options, Covariance covariance_at) {
   VaDiscovery discovery(options);
   core::Rng rng(7, 0);
   Outcome out;
+  std::vector<Vec2> active_m;  // the promoted VAs, which the tracker would now associate
   const auto walk = Walk();
   for (std::size_t k = 0; k < walk.size(); ++k) {
     const Vec2 agent_m = walk[k].position_m;
-    const std::vector<core::RangeMeasurement> ranges{
-        {(kVa_m - agent_m).norm() + rng.Normal(0.0, kRangeSigma_m), std::nullopt}};
+    const double range_m = (kVa_m - agent_m).norm() + rng.Normal(0.0, kRangeSigma_m);
+    const bool explained = std::any_of(active_m.begin(), active_m.end(), [&](const Vec2& va_m) {
+      return std::abs((va_m - agent_m).norm() - range_m) < kCutoff_m;
+    });
+    std::vector<core::RangeMeasurement> unassociated;
+    if (!explained) unassociated.push_back({range_m, std::nullopt});
     const int step = static_cast<int>(k);
-    for (auto& va : discovery.Process(step, 0, agent_m, covariance_at(step), ranges, {}, kCutoff_m)) {
+    for (auto& va : discovery.Process(step, 0, agent_m, covariance_at(step), unassociated, active_m, kCutoff_m)) {
+      active_m.push_back(va.position_m);
       out.promoted.push_back(std::move(va));
+      out.promoted_steps.push_back(step);
     }
     out.most_groups = std::max(out.most_groups, discovery.group_count());
     out.most_candidates = std::max(out.most_candidates, discovery.candidates().size());
@@ -63,28 +87,32 @@ TEST(VaDiscovery, PromotesTheVaOnTheRightSideOnceTheWalkTurns) {
   ASSERT_EQ(out.promoted.size(), 1u);
   const DiscoveredVa& va = out.promoted.front();
   EXPECT_EQ(va.anchor_index, 0);
-  EXPECT_LT((va.position_m - kVa_m).norm(), 0.05) << va.position_m.transpose();
-  EXPECT_GE(va.samples.size(), static_cast<std::size_t>(DiscoveryOptions{}.min_measurements));
+  EXPECT_LT((va.position_m - kVa_m).norm(), 0.05) << va.position_m.transpose();  // not (-1, 0)
+  EXPECT_GT(out.promoted_steps.front(), CornerStep()) << "promoted before the walk turned";
 }
 
 TEST(VaDiscovery, LearnsNothingWhileTheAgentIsPoorlyLocalised) {
   DiscoveryOptions options;
   options.max_agent_sigma_m = 0.1;
-  // Worse than the limit along one direction only: the worst direction decides.
-  Eigen::Matrix2d elongated = Eigen::Matrix2d::Zero();
-  elongated(0, 0) = 0.01 * 0.01;
-  elongated(1, 1) = 0.15 * 0.15;
-  const Outcome out = RunWalk(options, [&](int) { return elongated; });
+  // 12 cm std along the diagonal, 1 cm across it: each axis alone has 8.5 cm, so only the worst
+  // direction (the largest eigenvalue) exceeds the limit.
+  const Eigen::Matrix2d principal = Eigen::Vector2d(0.12 * 0.12, 0.01 * 0.01).asDiagonal();
+  const Eigen::Matrix2d rotation = Eigen::Rotation2Dd(0.25 * core::kPi).toRotationMatrix();
+  const Eigen::Matrix2d diagonal_ellipse = rotation * principal * rotation.transpose();
+  ASSERT_LT(std::sqrt(diagonal_ellipse(0, 0)), 0.1);
+  ASSERT_LT(std::sqrt(diagonal_ellipse(1, 1)), 0.1);
+  const Outcome out = RunWalk(options, [&](int) { return diagonal_ellipse; });
   EXPECT_TRUE(out.promoted.empty());
   EXPECT_EQ(out.most_groups, 0);
   EXPECT_EQ(out.most_candidates, 0u);
-  // Just inside the limit, the same walk promotes the VA.
-  EXPECT_EQ(RunWalk(options, [](int) { return Isotropic(0.09); }).promoted.size(), 1u);
+  // On either side of the limit: the same walk promotes the VA just inside it, nothing just outside.
+  EXPECT_EQ(RunWalk(options, [](int) { return Isotropic(0.0999); }).promoted.size(), 1u);
+  EXPECT_TRUE(RunWalk(options, [](int) { return Isotropic(0.1001); }).promoted.empty());
 }
 
 TEST(VaDiscovery, StepsOfAPoorlyLocalisedAgentAreLeftOutOfTheSamples) {
   // Lost for the 10 steps after the turn: the VA is still found, from the other steps only.
-  const int turn_step = 30;
+  const int turn_step = CornerStep();
   const auto covariance_at = [&](int step) {
     return step > turn_step && step <= turn_step + 10 ? Isotropic(0.3) : Isotropic(0.01);
   };

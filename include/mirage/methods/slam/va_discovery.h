@@ -36,19 +36,22 @@ namespace mirage::methods::slam {
 struct DiscoveryOptions {
   /// Discover new VAs at all.
   bool enabled = true;
+  /// A step's ranges are used only while the agent's position standard deviation along its worst
+  /// direction is at most this (m), > 0 (mirage; a large value, e.g. 100, switches it off).
+  /// Groups and candidates store the estimated agent positions as exact (as the paper's
+  /// past-measurement rows do, digest Sec. 2.7.3). Seminar room, seed 4: a candidate took a third
+  /// of its ranges while A2's LOS was behind the pillar and the agent's std across A1's LOS grew to
+  /// 26 cm; the drift made the mirror image of the VA about the walk fit better, it was promoted at
+  /// the next corner and held the track 1-3 m off (1 diverged run of 25; none at 0.1 m). 0.05 m
+  /// also drops good steps (a diverged run on trajectory 2). A skipped step still counts towards
+  /// the gap and time-out limits below: after a long stretch without a good position, groups and
+  /// candidates built before it are dropped.
+  double max_agent_sigma_m = 0.1;
   /// A range continues a group if it is within this distance of the group's last range (m), > 0.
   /// v_max dT + 2 cm = 0.5 m/s * 0.1 s + 2 cm [GAP; digest Sec. 3.3].
   double group_gate_m = 0.07;
   /// A group that misses more than this many consecutive steps is dropped (>= 0) [GAP].
   int group_max_gap_steps = 3;
-  /// A step's ranges are used only while the agent's position standard deviation along its worst
-  /// direction is at most this (m), > 0 (mirage). Groups and candidates store the estimated agent
-  /// positions as exact (as the paper's past-measurement rows do, digest Sec. 2.7.3); from a
-  /// poorly localised agent (one LOS blocked, the other along the same line) they build
-  /// candidates on the wrong side, and the promoted VA then holds the track there (seminar room,
-  /// seed 4: one diverged run of 25, gone at 0.1 m; 0.05 m also drops good steps and costs a
-  /// diverged run on trajectory 2).
-  double max_agent_sigma_m = 0.1;
   /// Ranges in a group before the range-Bancroft initialisation (>= 3). The thesis uses 3
   /// (Tab. 4.1); with 5 cm steps three points span 10 cm and the pair lands metres off, so 10
   /// (about 0.5 m of walking) as the digest suggests (5-10).
@@ -149,9 +152,10 @@ class VaDiscovery {
   explicit VaDiscovery(const DiscoveryOptions& options);
 
   /// Processes the unassociated ranges of one anchor at step `step`, measured from the agent's
-  /// current estimate agent_m with position covariance agent_covariance_m2 (a step with the agent
-  /// worse than max_agent_sigma_m is skipped). known_vas_m are the anchor's active VAs (for
-  /// duplicate suppression). Returns the candidates promoted at this step.
+  /// current estimate agent_m with position covariance agent_covariance_m2; a step whose position
+  /// std along its worst direction exceeds max_agent_sigma_m is skipped (nothing is updated or
+  /// promoted, the step still counts for the time-outs). known_vas_m are the anchor's active VAs
+  /// (for duplicate suppression). Returns the candidates promoted at this step.
   std::vector<DiscoveredVa> Process(int step, int anchor_index, const Vec2& agent_m,
                                     const Eigen::Matrix2d& agent_covariance_m2,
                                     std::span<const core::RangeMeasurement> unassociated,
