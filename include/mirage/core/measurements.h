@@ -3,7 +3,10 @@
 // that every estimator runs unchanged on simulated, recorded and live data (ROADMAP.md).
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "mirage/core/types.h"
@@ -35,5 +38,12 @@ struct AnchorRanges {
   /// Ranges in any order; clutter and missing detections are possible.
   std::vector<RangeMeasurement> ranges;
 };
+
+/// True if one of `ranges` lies within tolerance_m (exclusive) of expected_m: the match test of
+/// the relocalization scores (MINT's grid search, SLAM's track-loss recovery).
+inline bool HasRangeNear(std::span<const RangeMeasurement> ranges, double expected_m, double tolerance_m) {
+  return std::any_of(ranges.begin(), ranges.end(),
+                     [&](const RangeMeasurement& r) { return std::abs(r.range_m - expected_m) < tolerance_m; });
+}
 
 }  // namespace mirage::core

@@ -40,12 +40,8 @@ MatchScore ScorePosition(const geometry::VirtualAnchorSet& vas, const geometry::
   for (const auto& anchor : measurements) {
     for (const int id : geometry::VisibleVirtualAnchors(vas, anchor.anchor_index, plan, p_m, options.max_order)) {
       ++score.visible;
-      const double expected_m = (vas[id].position_m - p_m).norm();
-      for (const auto& r : anchor.ranges) {
-        if (std::abs(r.range_m - expected_m) < options.match_tolerance_m) {
-          ++score.matched;
-          break;
-        }
+      if (core::HasRangeNear(anchor.ranges, (vas[id].position_m - p_m).norm(), options.match_tolerance_m)) {
+        ++score.matched;
       }
     }
   }

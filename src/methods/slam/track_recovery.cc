@@ -33,10 +33,7 @@ int CountMatches(const Vec2& p_m, std::span<const MapPoint> map, std::span<const
     const double expected_m = (point.position_m - p_m).norm();
     for (const auto& anchor : measurements) {
       if (anchor.anchor_index != point.anchor_index) continue;
-      const bool hit = std::any_of(anchor.ranges.begin(), anchor.ranges.end(), [&](const core::RangeMeasurement& r) {
-        return std::abs(r.range_m - expected_m) < tolerance_m;
-      });
-      if (hit) {
+      if (core::HasRangeNear(anchor.ranges, expected_m, tolerance_m)) {
         ++matched;
         break;
       }
