@@ -117,6 +117,8 @@ methods::slam::TrackRecoveryOptions ReadRecovery(YamlMap m) {
   o.match_tolerance_m = m.NumberInRange("match_tolerance_m", o.match_tolerance_m, 1e-9, kHuge, "m");
   o.los_candidates = m.Integer("los_candidates", o.los_candidates, 1, 100);
   o.min_margin = m.Integer("min_margin", o.min_margin, 1, 1000);
+  o.min_margin_floor_plan = m.Integer("min_margin_floor_plan", o.min_margin_floor_plan, 1, 1000);
+  o.floor_plan_watch_steps = m.Integer("floor_plan_watch_steps", o.floor_plan_watch_steps, 0, 1000000);
   o.lost_steps = m.Integer("lost_steps", o.lost_steps, 1, 1000000);
   o.follow_gate_m = m.NumberInRange("follow_gate_m", o.follow_gate_m, 1e-9, kHuge, "m");
   o.max_jump_m = m.NumberInRange("max_jump_m", o.max_jump_m, 1e-9, kHuge, "m");

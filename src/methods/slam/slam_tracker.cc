@@ -78,6 +78,18 @@ estimation::State AgentMarginal(const estimation::State& state) {
   return estimation::State(std::move(layout), std::move(mean), std::move(covariance), state.t_s());
 }
 
+// The floor plan's VAs score in the track-loss recovery only where they are visible.
+bool ScoresFloorPlanVas(const SlamOptions& options, const geometry::FloorPlan& plan) {
+  return options.prior_visibility && options.prior_max_order > 0 && !plan.walls().empty();
+}
+
+// The recovery's options, with the margin for the map it scores.
+TrackRecoveryOptions RecoveryOptions(const SlamOptions& options, const geometry::FloorPlan& plan) {
+  TrackRecoveryOptions recovery = options.recovery;
+  if (ScoresFloorPlanVas(options, plan)) recovery.min_margin = recovery.min_margin_floor_plan;
+  return recovery;
+}
+
 }  // namespace
 
 SlamTracker::SlamTracker(const SlamOptions& options, const geometry::VirtualAnchorSet& known_vas,
@@ -87,7 +99,7 @@ SlamTracker::SlamTracker(const SlamOptions& options, const geometry::VirtualAnch
       plan_(&plan),
       variance_(options.variance, range_sigma_at_unit_sinr_m),
       discovery_(options.discovery),
-      recovery_(options.recovery) {}
+      recovery_(RecoveryOptions(options, plan)) {}
 
 void SlamTracker::Initialize(double t_s, const Vec2& p0_m) {
   estimation::StateLayout layout;
@@ -104,6 +116,7 @@ void SlamTracker::Initialize(double t_s, const Vec2& p0_m) {
   recovery_.Reset();
   map_.clear();
   step_ = 0;
+  steps_since_los_miss_ = kNoLosMissYet;
   next_discovered_id_ = kFirstDiscoveredVaId;
   for (const auto& va : known_vas_->all()) {
     if (va.order > options_.prior_max_order) continue;
@@ -439,11 +452,14 @@ SlamStepResult SlamTracker::Step(double t_s, std::span<const core::AnchorRanges>
 }
 
 void SlamTracker::NoteLosMisses(const std::vector<Pairing>& los) {
+  bool any_missed = false;
   for (auto& e : map_) {
     if (e.va.origin != MapVaOrigin::kAnchor) continue;
     e.los_missed =
         std::none_of(los.begin(), los.end(), [&](const Pairing& p) { return p.anchor_index == e.va.anchor_index; });
+    any_missed = any_missed || e.los_missed;
   }
+  steps_since_los_miss_ = any_missed ? 0 : steps_since_los_miss_ + 1;
 }
 
 std::vector<Vec2> SlamTracker::BlockedAnchors() const {
@@ -482,13 +498,36 @@ bool SlamTracker::RecoverTrack(double t_s, std::span<const core::AnchorRanges> m
       points.push_back({va.anchor_index, VaPosition(i)});
     }
   }
-  // The score counts every point as a candidate everywhere, which is right only for VAs without
-  // a visibility region: with the floor plan's VAs (hundreds, each visible in a small region)
-  // chance matches made it restart good tracks (6 of 25 runs in seminar_room_slam_known.yaml).
-  // With the anchors alone the two LOS intersections cannot be told apart.
-  if (points.size() < anchors.size() + kRecoveryMinVas) return false;
+  // The points count as candidates everywhere, which is right only for VAs without a visibility
+  // region: the floor plan's VAs (hundreds, each visible in a small region) counted everywhere
+  // made it restart good tracks (6 of 25 runs in seminar_room_slam_known.yaml). They score only
+  // where ray tracing makes them visible, as in MINT's relocalization, with a larger margin
+  // (TrackRecoveryOptions::min_margin_floor_plan). With the anchors alone the two LOS
+  // intersections cannot be told apart.
+  const bool visibility_priors = ScoresFloorPlanVas(options_, *plan_);
+  if (!visibility_priors && points.size() < anchors.size() + kRecoveryMinVas) return false;
+  // Ray tracing every candidate costs about 110 us per step (BM_SlamStep40Vas): with the floor
+  // plan's VAs the search runs only for a while after an anchor's LOS went missing, which is how
+  // the lost known-VA tracks began (an overshoot at a corner took the LOS out of the cut-off).
+  if (visibility_priors && options_.reassociate && steps_since_los_miss_ > options_.recovery.floor_plan_watch_steps &&
+      !recovery_.pending()) {
+    return false;
+  }
+  const double tolerance_m = options_.recovery.match_tolerance_m;
+  const auto score = [&](const Vec2& p_m) {
+    int matched = CountMatches(p_m, points, measurements, tolerance_m);
+    if (!visibility_priors) return matched;
+    for (const auto& anchor : measurements) {
+      for (const int id : geometry::VisibleVirtualAnchors(*known_vas_, anchor.anchor_index, *plan_, p_m,
+                                                          options_.prior_max_order)) {
+        const auto& va = (*known_vas_)[id];
+        if (va.order > 0 && core::HasRangeNear(anchor.ranges, (va.position_m - p_m).norm(), tolerance_m)) ++matched;
+      }
+    }
+    return matched;
+  };
   const Vec2 estimate_m = state_.Mean({BlockKind::kPosition, 0});
-  const auto restart = recovery_.Check(t_s, estimate_m, anchors, points, measurements);
+  const auto restart = recovery_.Check(t_s, estimate_m, anchors, score, measurements);
   if (!restart) return false;
   // Restart the agent as at the start, at the recovered position with the candidates' velocity,
   // uncorrelated with the map: the correlations were built along the lost track. The map keeps

@@ -18,6 +18,8 @@ std::vector<std::string> Validate(const TrackRecoveryOptions& options) {
   }
   if (options.los_candidates < 1) problems.push_back("los_candidates must be >= 1");
   if (options.min_margin < 1) problems.push_back("min_margin must be >= 1");
+  if (options.min_margin_floor_plan < 1) problems.push_back("min_margin_floor_plan must be >= 1");
+  if (options.floor_plan_watch_steps < 0) problems.push_back("floor_plan_watch_steps must be >= 0");
   if (options.lost_steps < 1) problems.push_back("lost_steps must be >= 1");
   if (!(options.follow_gate_m > 0.0) || !std::isfinite(options.follow_gate_m)) {
     problems.push_back("follow_gate_m must be > 0 m");
@@ -109,8 +111,17 @@ void TrackRecovery::Reset() { pending_steps_ = 0; }
 std::optional<Restart> TrackRecovery::Check(double t_s, const Vec2& estimate_m, std::span<const MapPoint> anchors,
                                             std::span<const MapPoint> map,
                                             std::span<const core::AnchorRanges> measurements) {
+  return Check(
+      t_s, estimate_m, anchors,
+      [&](const Vec2& p_m) { return CountMatches(p_m, map, measurements, options_.match_tolerance_m); },
+      measurements);
+}
+
+std::optional<Restart> TrackRecovery::Check(double t_s, const Vec2& estimate_m, std::span<const MapPoint> anchors,
+                                            const std::function<int(const Vec2&)>& score_at,
+                                            std::span<const core::AnchorRanges> measurements) {
   if (!options_.enabled) return std::nullopt;
-  const int estimate_score = CountMatches(estimate_m, map, measurements, options_.match_tolerance_m);
+  const int estimate_score = score_at(estimate_m);
   const int needed = estimate_score + options_.min_margin;
   // Two bests: over all candidates (a new chain starts there), and among the continuations of
   // the pending chain (within follow_gate_m of its last point). With ~15 clutter ranges per
@@ -122,7 +133,7 @@ std::optional<Restart> TrackRecovery::Check(double t_s, const Vec2& estimate_m, 
   Vec2 follow_m = Vec2::Zero();
   for (const Vec2& c : LosCandidates(anchors, measurements, options_.los_candidates)) {
     if ((c - estimate_m).norm() > options_.max_jump_m) continue;
-    const int score = CountMatches(c, map, measurements, options_.match_tolerance_m);
+    const int score = score_at(c);
     if (score > best_score || (score == best_score && (c - estimate_m).norm() < (best_m - estimate_m).norm())) {
       best_score = score;
       best_m = c;

@@ -248,6 +248,60 @@ TEST(SlamTracker, ShadowConeWeakensOnlyTheDiscoveredVasBehindABlockedAnchor) {
   EXPECT_GE(outside, 1);
 }
 
+// A track on the wrong intersection of the two LOS circles (the mirror image of the truth about
+// the anchors' line, where both LOS ranges fit) with the floor plan's VAs known: the recovery
+// scores each candidate by the VAs visible there and restarts the track at the truth, once a LOS
+// has gone missing (the search runs only for floor_plan_watch_steps after that).
+struct MirrorOutcome {
+  bool relocalized = false;
+  double final_error_m = 0.0;
+};
+
+MirrorOutcome StartOnTheMirror(const SlamOptions& options, bool drop_a_los) {
+  const auto plan = mint::testing::EmptySquareRoom();
+  // Not the fixture's anchors: they lie on the room's diagonal, about which the whole room is
+  // symmetric, so there the mirror image explains every VA as well as the truth does.
+  const std::vector<Vec2> anchors_m{Vec2(1.0, 5.0), Vec2(5.0, 2.0)};
+  const auto vas = geometry::VirtualAnchorSet::Generate(anchors_m, plan, 1);
+  const Vec2 truth_m(2.0, 2.5);
+  const Vec2 mirror_m(3.68, 4.74);  // about the anchors' line
+  SlamTracker tracker(options, vas, plan, kSigma1M);
+  tracker.Initialize(0.0, mirror_m);
+  core::Rng rng(11, 0);
+  MirrorOutcome out;
+  for (int k = 1; k <= 40; ++k) {
+    auto ranges = MeasureRanges(vas, plan, truth_m, MeasurementModel{}, rng);
+    if (drop_a_los && k == 5) {  // anchor 0's LOS (its shortest range) is not detected once
+      auto& r = ranges[0].ranges;
+      r.erase(std::min_element(r.begin(), r.end(), [](const auto& a, const auto& b) { return a.range_m < b.range_m; }));
+    }
+    const auto step = tracker.Step(0.1 * k, ranges);
+    out.relocalized = out.relocalized || step.relocalized;
+    out.final_error_m = (step.position_m - truth_m).norm();
+  }
+  return out;
+}
+
+TEST(SlamTracker, FloorPlanMapRestartsATrackOnTheMirrorIntersectionAfterALosLoss) {
+  SlamOptions options;
+  options.prior_max_order = 1;
+  options.prior_visibility = true;
+  options.discovery.enabled = false;
+
+  const MirrorOutcome restarted = StartOnTheMirror(options, true);
+  EXPECT_TRUE(restarted.relocalized);
+  EXPECT_LT(restarted.final_error_m, 0.05);
+
+  // Without a LOS loss the search does not run; without the recovery the track stays lost.
+  const MirrorOutcome unwatched = StartOnTheMirror(options, false);
+  EXPECT_FALSE(unwatched.relocalized);
+  EXPECT_GT(unwatched.final_error_m, 1.0);
+  options.recovery.enabled = false;
+  const MirrorOutcome disabled = StartOnTheMirror(options, true);
+  EXPECT_FALSE(disabled.relocalized);
+  EXPECT_GT(disabled.final_error_m, 1.0);
+}
+
 TEST(SlamTracker, ValidateNamesTheBadOption) {
   SlamOptions options;
   options.cutoff_m = 0.0;
