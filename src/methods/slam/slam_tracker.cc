@@ -56,7 +56,8 @@ std::vector<std::string> Validate(const SlamOptions& options) {
 
 namespace {
 
-// VAs without a visibility region the map needs before the track-loss recovery runs (below).
+// VAs without a visibility region the map needs before the track-loss recovery runs without the
+// floor plan (below).
 constexpr std::size_t kRecoveryMinVas = 2;
 
 // The agent's position and velocity with their marginal covariance, as a state of its own.
@@ -116,7 +117,7 @@ void SlamTracker::Initialize(double t_s, const Vec2& p0_m) {
   recovery_.Reset();
   map_.clear();
   step_ = 0;
-  steps_since_los_miss_ = kNoLosMissYet;
+  last_los_miss_step_ = -1;
   next_discovered_id_ = kFirstDiscoveredVaId;
   for (const auto& va : known_vas_->all()) {
     if (va.order > options_.prior_max_order) continue;
@@ -459,7 +460,7 @@ void SlamTracker::NoteLosMisses(const std::vector<Pairing>& los) {
         std::none_of(los.begin(), los.end(), [&](const Pairing& p) { return p.anchor_index == e.va.anchor_index; });
     any_missed = any_missed || e.los_missed;
   }
-  steps_since_los_miss_ = any_missed ? 0 : steps_since_los_miss_ + 1;
+  if (any_missed) last_los_miss_step_ = step_;
 }
 
 std::vector<Vec2> SlamTracker::BlockedAnchors() const {
@@ -487,41 +488,39 @@ void SlamTracker::MarkShadowed(std::vector<Pairing>& pairings, std::span<const V
 
 bool SlamTracker::RecoverTrack(double t_s, std::span<const core::AnchorRanges> measurements) {
   if (!options_.recovery.enabled) return false;
+  // With the floor plan's VAs (the known-VA baseline) every VA, the anchors' LOS included,
+  // scores only where ray tracing makes it visible, as in MINT's relocalization: counted
+  // everywhere, hundreds of them matched by chance and restarted good tracks (6 of 25 runs in
+  // seminar_room_slam_known.yaml). Without it the points count everywhere, which is right for
+  // discovered VAs (they have no visibility region); with the anchors alone the two LOS
+  // intersections tie, so it waits for kRecoveryMinVas discovered VAs.
+  const bool floor_plan = ScoresFloorPlanVas(options_, *plan_);
   std::vector<MapPoint> anchors;
-  std::vector<MapPoint> points;
+  std::vector<MapPoint> points;  // scored everywhere
   for (std::size_t i = 0; i < map_.size(); ++i) {
     const MapVa& va = map_[i].va;
     if (va.origin == MapVaOrigin::kAnchor) {
       anchors.push_back({va.anchor_index, map_[i].prior_m});
-      points.push_back(anchors.back());
+      if (!floor_plan) points.push_back(anchors.back());
     } else if (!HasVisibility(i) && InState(i)) {
       points.push_back({va.anchor_index, VaPosition(i)});
     }
   }
-  // The points count as candidates everywhere, which is right only for VAs without a visibility
-  // region: the floor plan's VAs (hundreds, each visible in a small region) counted everywhere
-  // made it restart good tracks (6 of 25 runs in seminar_room_slam_known.yaml). They score only
-  // where ray tracing makes them visible, as in MINT's relocalization, with a larger margin
-  // (TrackRecoveryOptions::min_margin_floor_plan). With the anchors alone the two LOS
-  // intersections cannot be told apart.
-  const bool visibility_priors = ScoresFloorPlanVas(options_, *plan_);
-  if (!visibility_priors && points.size() < anchors.size() + kRecoveryMinVas) return false;
+  if (!floor_plan && points.size() < anchors.size() + kRecoveryMinVas) return false;
   // Ray tracing every candidate costs about 110 us per step (BM_SlamStep40Vas): with the floor
-  // plan's VAs the search runs only for a while after an anchor's LOS went missing, which is how
-  // the lost known-VA tracks began (an overshoot at a corner took the LOS out of the cut-off).
-  if (visibility_priors && options_.reassociate && steps_since_los_miss_ > options_.recovery.floor_plan_watch_steps &&
-      !recovery_.pending()) {
-    return false;
-  }
+  // plan the search runs only for a while after an anchor's LOS went missing at stage 1, which is
+  // how the lost known-VA tracks began (an overshoot at a corner took the LOS out of the cut-off).
+  const bool watching =
+      last_los_miss_step_ >= 0 && step_ - last_los_miss_step_ <= options_.recovery.floor_plan_watch_steps;
+  if (floor_plan && !watching && !recovery_.pending()) return false;
   const double tolerance_m = options_.recovery.match_tolerance_m;
   const auto score = [&](const Vec2& p_m) {
     int matched = CountMatches(p_m, points, measurements, tolerance_m);
-    if (!visibility_priors) return matched;
+    if (!floor_plan) return matched;
     for (const auto& anchor : measurements) {
       for (const int id : geometry::VisibleVirtualAnchors(*known_vas_, anchor.anchor_index, *plan_, p_m,
                                                           options_.prior_max_order)) {
-        const auto& va = (*known_vas_)[id];
-        if (va.order > 0 && core::HasRangeNear(anchor.ranges, (va.position_m - p_m).norm(), tolerance_m)) ++matched;
+        if (core::HasRangeNear(anchor.ranges, ((*known_vas_)[id].position_m - p_m).norm(), tolerance_m)) ++matched;
       }
     }
     return matched;

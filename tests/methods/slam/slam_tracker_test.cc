@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
 // The SLAM tracker on synthetic unlabeled ranges in the 6 m x 6 m square room of
 // methods/mint/square_room.h: the known-VA baseline, discovery from the anchors alone on clean
-// ranges, lazy state augmentation, the amplitude gate, the shadow cone, the LOS re-acquisition
-// and option validation.
+// ranges, lazy state augmentation, the amplitude gate, the shadow cone, the LOS re-acquisition,
+// the track-loss recovery with a floor-plan map, and option validation.
 #include "mirage/methods/slam/slam_tracker.h"
 
 #include <algorithm>

@@ -133,7 +133,9 @@ TEST(TrackRecoveryOptions, ValidateNamesEachBadValue) {
   o.lost_steps = 0;
   o.follow_gate_m = -1.0;
   o.max_jump_m = 0.0;
-  EXPECT_EQ(Validate(o).size(), 6u);
+  o.min_margin_floor_plan = 0;
+  o.floor_plan_watch_steps = -1;
+  EXPECT_EQ(Validate(o).size(), 8u);
 }
 
 }  // namespace

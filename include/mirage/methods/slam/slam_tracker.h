@@ -272,8 +272,7 @@ class SlamTracker {
   estimation::State state_;
   std::vector<Entry> map_;
   int step_ = 0;
-  static constexpr int kNoLosMissYet = 1 << 30;
-  int steps_since_los_miss_ = kNoLosMissYet;  // steps since an anchor's LOS found no range at stage 1
+  int last_los_miss_step_ = -1;  // the last step at which an anchor's LOS found no range at stage 1
   int next_discovered_id_ = kFirstDiscoveredVaId;
 };
 

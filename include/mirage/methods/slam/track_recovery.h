@@ -46,18 +46,19 @@ struct TrackRecoveryOptions {
   /// Matched map points by which a candidate must beat the estimate, >= 1. 2: one chance match
   /// among ~15 clutter ranges per anchor and step is common, two at the same position are not.
   int min_margin = 2;
-  /// The margin when the map's VAs come from a known floor plan and score only where ray tracing
+  /// Used instead of min_margin when the map is a known floor plan's VAs (the tracker's
+  /// prior_visibility with prior_max_order > 0 and walls), which score only where ray tracing
   /// makes them visible, >= 1. About 35 VAs are visible per anchor there, so the estimate and a
-  /// candidate each collect a few chance matches among ~15 ranges per anchor and step: with 2,
-  /// good tracks were restarted 10 times in 300 runs (seeds 1-6; one of them left 0.4 m rmse);
-  /// with 4, 3 times and harmlessly, and the two runs that diverged without the recovery
-  /// (seeds 5 and 9, held out) were restarted.
+  /// candidate each collect a few chance matches among ~15 ranges per anchor and step. Seminar
+  /// room, seeds 1-9, 450 known-VA runs: with 4 only the two lost runs (seeds 5 and 9) restart;
+  /// with 2 good tracks restart too (8 times on seeds 4 and 7; one left with 0.42 m rmse).
   int min_margin_floor_plan = 4;
   /// With the floor plan's VAs, the search runs only within this many steps after a step at which
-  /// an anchor's LOS found no range (or while a candidate is pending), >= 0: ray tracing every
-  /// candidate costs about 110 us per step, and the lost known-VA tracks began with a LOS lost
-  /// at a corner. 10 steps: both lost runs restarted, no good track restarted (seeds 1-9); the
-  /// search at every step restarted good tracks 3 times (margin 4).
+  /// an anchor's LOS found no range at stage 1 (so it needs the tracker's reassociate), and while
+  /// a pending candidate's chain continues, >= 0 (0: the miss step only). Ray tracing every
+  /// candidate costs about 110 us per step, and both lost known-VA tracks began with a LOS lost
+  /// at a corner. 10 steps: both restart, no good track restarts (seeds 1-9); searching at every
+  /// step after the first miss restarts one good track more (seed 5, harmlessly).
   int floor_plan_watch_steps = 10;
   /// Consecutive steps at which a candidate must win before the restart, >= 1.
   int lost_steps = 3;
@@ -118,7 +119,7 @@ class TrackRecovery {
   /// The same with the score of a position given as a function: the number of map points whose
   /// expected range a measured range matches there (e.g. VAs counted only where visible).
   std::optional<Restart> Check(double t_s, const Vec2& estimate_m, std::span<const MapPoint> anchors,
-                               const std::function<int(const Vec2&)>& score,
+                               const std::function<int(const Vec2&)>& score_at,
                                std::span<const core::AnchorRanges> measurements);
 
  private:
