@@ -74,23 +74,25 @@ void ReadChannel(YamlMap m, pipeline::MintExperimentConfig& config) {
   CheckWindowCoversLos(m, config);
 }
 
-methods::mint::MintOptions ReadMint(YamlMap m, std::size_t walls) {
-  methods::mint::MintOptions o;
+// The keys MINT and SLAM share, with the same meaning and limits.
+template <typename TrackerOptions>
+void ReadTrackerCommon(YamlMap& m, TrackerOptions& o) {
   o.cutoff_m = m.NumberInRange("cutoff_m", o.cutoff_m, 1e-9, kHuge, "m");
   o.range_sigma_m = m.NumberInRange("range_sigma_m", o.range_sigma_m, 1e-9, kHuge, "m");
   o.initial_position_sigma_m = m.NumberInRange("initial_position_sigma_m", o.initial_position_sigma_m, 1e-9, kHuge, "m");
   o.initial_velocity_sigma_mps =
       m.NumberInRange("initial_velocity_sigma_mps", o.initial_velocity_sigma_mps, 1e-9, kHuge, "m/s");
+}
+
+methods::mint::MintOptions ReadMint(YamlMap m, std::size_t walls) {
+  methods::mint::MintOptions o;
+  ReadTrackerCommon(m, o);
   o.max_order = m.Integer("max_order", o.max_order, 0, geometry::kMaxVirtualAnchorOrder);
   CheckVirtualAnchorCount(m, "max_order", walls, o.max_order);
   o.reassociate = m.Boolean("reassociate", o.reassociate);
   o.constrain_to_room = m.Boolean("constrain_to_room", o.constrain_to_room);
   o.innovation_gate_chi2 = m.NumberInRange("innovation_gate_chi2", o.innovation_gate_chi2, 0.0, 1e6, "");
-  {
-    YamlMap motion = m.OptionalMap("motion");
-    o.motion.accel_sigma_mps2 = motion.NumberInRange("accel_sigma_mps2", o.motion.accel_sigma_mps2, 1e-9, kHuge, "m/s^2");
-    motion.RejectUnknownKeys();
-  }
+  o.motion = ReadMotion(m.OptionalMap("motion"), o.motion);
   o.variance = ReadVariance(m.OptionalMap("variance"));
   {
     YamlMap r = m.OptionalMap("relocalization");
@@ -157,11 +159,7 @@ methods::slam::DiscoveryOptions ReadDiscovery(YamlMap m) {
 
 methods::slam::SlamOptions ReadSlam(YamlMap m, std::size_t walls) {
   methods::slam::SlamOptions o;
-  o.cutoff_m = m.NumberInRange("cutoff_m", o.cutoff_m, 1e-9, kHuge, "m");
-  o.range_sigma_m = m.NumberInRange("range_sigma_m", o.range_sigma_m, 1e-9, kHuge, "m");
-  o.initial_position_sigma_m = m.NumberInRange("initial_position_sigma_m", o.initial_position_sigma_m, 1e-9, kHuge, "m");
-  o.initial_velocity_sigma_mps =
-      m.NumberInRange("initial_velocity_sigma_mps", o.initial_velocity_sigma_mps, 1e-9, kHuge, "m/s");
+  ReadTrackerCommon(m, o);
   o.prior_max_order = m.Integer("prior_max_order", o.prior_max_order, 0, geometry::kMaxVirtualAnchorOrder);
   CheckVirtualAnchorCount(m, "prior_max_order", walls, o.prior_max_order);
   o.prior_va_sigma_m = m.NumberInRange("prior_va_sigma_m", o.prior_va_sigma_m, 1e-9, kHuge, "m");
@@ -175,11 +173,7 @@ methods::slam::SlamOptions ReadSlam(YamlMap m, std::size_t walls) {
   o.joseph_update = m.Boolean("joseph_update", o.joseph_update);
   o.amplitude_gate_probability =
       m.NumberInRange("amplitude_gate_probability", o.amplitude_gate_probability, 0.0, 0.5, "");
-  {
-    YamlMap motion = m.OptionalMap("motion");
-    o.motion.accel_sigma_mps2 = motion.NumberInRange("accel_sigma_mps2", o.motion.accel_sigma_mps2, 1e-9, kHuge, "m/s^2");
-    motion.RejectUnknownKeys();
-  }
+  o.motion = ReadMotion(m.OptionalMap("motion"), o.motion);
   o.variance = ReadVariance(m.OptionalMap("variance"));
   o.discovery = ReadDiscovery(m.OptionalMap("discovery"));
   o.shadow_cone_deg = m.NumberInRange("shadow_cone_deg", o.shadow_cone_deg, 0.0, 180.0, "deg");

@@ -73,6 +73,13 @@ dsp::MpcExtractorOptions ReadMpc(YamlMap m) {
   return o;
 }
 
+estimation::ConstantVelocityOptions ReadMotion(YamlMap m, const estimation::ConstantVelocityOptions& defaults) {
+  estimation::ConstantVelocityOptions o = defaults;
+  o.accel_sigma_mps2 = m.NumberInRange("accel_sigma_mps2", o.accel_sigma_mps2, 1e-9, kHuge, "m/s^2");
+  m.RejectUnknownKeys();
+  return o;
+}
+
 methods::mint::VaVarianceOptions ReadVariance(YamlMap m, const methods::mint::VaVarianceOptions& defaults) {
   methods::mint::VaVarianceOptions o = defaults;
   o.enabled = m.Boolean("enabled", o.enabled);

@@ -11,6 +11,7 @@
 #include "mirage/channel/cir_synthesizer.h"
 #include "mirage/core/types.h"
 #include "mirage/dsp/mpc_extractor.h"
+#include "mirage/estimation/motion/constant_velocity.h"
 #include "mirage/geometry/floor_plan.h"
 #include "mirage/io/scenario.h"
 #include "mirage/io/yaml_reader.h"
@@ -65,6 +66,8 @@ channel::DiffuseOptions ReadDiffuse(YamlMap m);
 dsp::MpcExtractorOptions ReadMpc(YamlMap m);
 /// A `variance` section; absent keys take `defaults` (the method's own defaults).
 methods::mint::VaVarianceOptions ReadVariance(YamlMap m, const methods::mint::VaVarianceOptions& defaults = {});
+/// A `motion` section (constant-velocity model); absent keys take `defaults`.
+estimation::ConstantVelocityOptions ReadMotion(YamlMap m, const estimation::ConstantVelocityOptions& defaults = {});
 
 /// Fails at `key` when p is not enclosed by the plan's walls or lies inside an obstacle; `what`
 /// names the point in the message ("anchor 'A1'").
