@@ -79,7 +79,8 @@ template <typename TrackerOptions>
 void ReadTrackerCommon(YamlMap& m, TrackerOptions& o) {
   o.cutoff_m = m.NumberInRange("cutoff_m", o.cutoff_m, 1e-9, kHuge, "m");
   o.range_sigma_m = m.NumberInRange("range_sigma_m", o.range_sigma_m, 1e-9, kHuge, "m");
-  o.initial_position_sigma_m = m.NumberInRange("initial_position_sigma_m", o.initial_position_sigma_m, 1e-9, kHuge, "m");
+  o.initial_position_sigma_m =
+      m.NumberInRange("initial_position_sigma_m", o.initial_position_sigma_m, 1e-9, kHuge, "m");
   o.initial_velocity_sigma_mps =
       m.NumberInRange("initial_velocity_sigma_mps", o.initial_velocity_sigma_mps, 1e-9, kHuge, "m/s");
 }

@@ -492,8 +492,8 @@ bool SlamTracker::RecoverTrack(double t_s, std::span<const core::AnchorRanges> m
   // scores only where ray tracing makes it visible, as in MINT's relocalization: counted
   // everywhere, hundreds of them matched by chance and restarted good tracks (6 of 25 runs in
   // seminar_room_slam_known.yaml). Without it the points count everywhere, which is right for
-  // discovered VAs (they have no visibility region); with the anchors alone the two LOS
-  // intersections tie, so it waits for kRecoveryMinVas discovered VAs.
+  // VAs without a visibility region (discovered ones); with the anchors alone the two LOS
+  // intersections tie, so it waits for kRecoveryMinVas such VAs.
   const bool floor_plan = ScoresFloorPlanVas(options_, *plan_);
   std::vector<MapPoint> anchors;
   std::vector<MapPoint> points;  // scored everywhere
@@ -507,9 +507,10 @@ bool SlamTracker::RecoverTrack(double t_s, std::span<const core::AnchorRanges> m
     }
   }
   if (!floor_plan && points.size() < anchors.size() + kRecoveryMinVas) return false;
-  // Ray tracing every candidate costs about 110 us per step (BM_SlamStep40Vas): with the floor
-  // plan the search runs only for a while after an anchor's LOS went missing at stage 1, which is
-  // how the lost known-VA tracks began (an overshoot at a corner took the LOS out of the cut-off).
+  // Ray tracing every candidate costs about 110 us per step (BM_SlamStep40Vas with the search at
+  // every step): with the floor plan the search runs only for a while after an anchor's LOS went
+  // missing at stage 1, which is how the lost known-VA tracks began (an overshoot at a corner
+  // took the LOS out of the cut-off).
   const bool watching =
       last_los_miss_step_ >= 0 && step_ - last_los_miss_step_ <= options_.recovery.floor_plan_watch_steps;
   if (floor_plan && !watching && !recovery_.pending()) return false;

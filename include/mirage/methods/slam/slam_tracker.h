@@ -236,7 +236,8 @@ class SlamTracker {
   estimation::UpdateResult Update(estimation::State& state, const std::vector<Pairing>& pairings,
                                   const std::vector<double>& variances_m2) const;
   void AddToState(std::size_t map_index);
-  // Marks the anchors without a LOS pairing at stage 1 (Entry::los_missed).
+  // Marks the anchors without a LOS pairing at stage 1 (Entry::los_missed) and remembers the
+  // step of such a miss (last_los_miss_step_, the recovery's watch window).
   void NoteLosMisses(const std::vector<Pairing>& los);
   // Shadow cone: positions of the anchors whose LOS was missed at this step.
   [[nodiscard]] std::vector<Vec2> BlockedAnchors() const;

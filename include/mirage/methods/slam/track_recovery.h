@@ -18,8 +18,9 @@
 //   3. restarts the agent at a candidate that beats the estimate by a margin at several
 //      consecutive steps, the candidates of those steps following one another as a walker
 //      could.
-// With a known floor plan (the known-VA baseline) the tracker supplies the score instead: the
-// floor plan's VAs count only where ray tracing makes them visible, as in MINT's search.
+// With a known floor plan (the known-VA baseline) the tracker supplies the score instead: every
+// VA of the floor plan, the anchors' LOS included, counts at its known position and only where
+// ray tracing makes it visible, as in MINT's search.
 #pragma once
 
 #include <functional>
