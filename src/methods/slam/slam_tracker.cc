@@ -14,6 +14,7 @@
 #include "mirage/estimation/meas/va_range.h"
 #include "mirage/estimation/range_association.h"
 #include "mirage/geometry/visibility.h"
+#include "mirage/methods/mint/relocalization.h"
 
 namespace mirage::methods::slam {
 
@@ -79,7 +80,8 @@ estimation::State AgentMarginal(const estimation::State& state) {
   return estimation::State(std::move(layout), std::move(mean), std::move(covariance), state.t_s());
 }
 
-// The floor plan's VAs score in the track-loss recovery only where they are visible.
+// The map's prior VAs come from a floor plan and have ray-traced visibility regions: they are
+// candidates only where visible, and score in the track-loss recovery only there.
 bool ScoresFloorPlanVas(const SlamOptions& options, const geometry::FloorPlan& plan) {
   return options.prior_visibility && options.prior_max_order > 0 && !plan.walls().empty();
 }
@@ -150,7 +152,7 @@ double SlamTracker::CurrentVariance(int va_id) const {
 }
 
 bool SlamTracker::HasVisibility(std::size_t map_index) const {
-  return map_[map_index].va.origin == MapVaOrigin::kPrior && options_.prior_visibility && !plan_->walls().empty();
+  return map_[map_index].va.origin == MapVaOrigin::kPrior && ScoresFloorPlanVas(options_, *plan_);
 }
 
 bool SlamTracker::Filtered(std::size_t map_index) const {
@@ -482,7 +484,8 @@ void SlamTracker::MarkShadowed(std::vector<Pairing>& pairings, std::span<const V
   for (auto& p : pairings) {
     if (map_[p.map_index].va.origin == MapVaOrigin::kAnchor || HasVisibility(p.map_index)) continue;
     const Vec2 to_va = (VaPosition(p.map_index) - at_m).normalized();
-    p.shadowed = std::any_of(to_blocked.begin(), to_blocked.end(), [&](const Vec2& u) { return to_va.dot(u) > cos_cone; });
+    p.shadowed =
+        std::any_of(to_blocked.begin(), to_blocked.end(), [&](const Vec2& u) { return to_va.dot(u) > cos_cone; });
   }
 }
 
@@ -495,6 +498,13 @@ bool SlamTracker::RecoverTrack(double t_s, std::span<const core::AnchorRanges> m
   // VAs without a visibility region (discovered ones); with the anchors alone the two LOS
   // intersections tie, so it waits for kRecoveryMinVas such VAs.
   const bool floor_plan = ScoresFloorPlanVas(options_, *plan_);
+  // Ray tracing every candidate costs about 110 us per step (BM_SlamStep40Vas with the search at
+  // every step): with the floor plan the search runs only for a while after an anchor's LOS went
+  // missing at stage 1, which is how the lost known-VA tracks began (an overshoot at a corner
+  // took the LOS out of the cut-off).
+  const bool watching =
+      last_los_miss_step_ >= 0 && step_ - last_los_miss_step_ <= options_.recovery.floor_plan_watch_steps;
+  if (floor_plan && !watching && !recovery_.pending()) return false;
   std::vector<MapPoint> anchors;
   std::vector<MapPoint> points;  // scored everywhere
   for (std::size_t i = 0; i < map_.size(); ++i) {
@@ -507,23 +517,13 @@ bool SlamTracker::RecoverTrack(double t_s, std::span<const core::AnchorRanges> m
     }
   }
   if (!floor_plan && points.size() < anchors.size() + kRecoveryMinVas) return false;
-  // Ray tracing every candidate costs about 110 us per step (BM_SlamStep40Vas with the search at
-  // every step): with the floor plan the search runs only for a while after an anchor's LOS went
-  // missing at stage 1, which is how the lost known-VA tracks began (an overshoot at a corner
-  // took the LOS out of the cut-off).
-  const bool watching =
-      last_los_miss_step_ >= 0 && step_ - last_los_miss_step_ <= options_.recovery.floor_plan_watch_steps;
-  if (floor_plan && !watching && !recovery_.pending()) return false;
   const double tolerance_m = options_.recovery.match_tolerance_m;
+  mint::RelocalizationOptions visible_scoring;  // MINT's score: the floor plan's VAs visible at p
+  visible_scoring.max_order = options_.prior_max_order;
+  visible_scoring.match_tolerance_m = tolerance_m;
   const auto score = [&](const Vec2& p_m) {
     int matched = CountMatches(p_m, points, measurements, tolerance_m);
-    if (!floor_plan) return matched;
-    for (const auto& anchor : measurements) {
-      for (const int id : geometry::VisibleVirtualAnchors(*known_vas_, anchor.anchor_index, *plan_, p_m,
-                                                          options_.prior_max_order)) {
-        if (core::HasRangeNear(anchor.ranges, ((*known_vas_)[id].position_m - p_m).norm(), tolerance_m)) ++matched;
-      }
-    }
+    if (floor_plan) matched += mint::ScorePosition(*known_vas_, *plan_, p_m, measurements, visible_scoring).matched;
     return matched;
   };
   const Vec2 estimate_m = state_.Mean({BlockKind::kPosition, 0});
