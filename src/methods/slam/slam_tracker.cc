@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <iterator>
 #include <limits>
 #include <unordered_set>
 
@@ -359,6 +360,15 @@ SlamStepResult SlamTracker::Step(double t_s, std::span<const core::AnchorRanges>
   }
 
   std::vector<Pairing> pairings = Associate(reference, measurements, false, options_.innovation_gate_chi2);
+  if (!options_.reassociate) {
+    // Without stage 1 the LOS misses are read off the joint association: the floor-plan
+    // recovery's watch window needs them (the shadow cone and the re-acquisition are stage 1's).
+    std::vector<Pairing> los;
+    std::copy_if(pairings.begin(), pairings.end(), std::back_inserter(los), [&](const Pairing& p) {
+      return map_[p.map_index].va.origin == MapVaOrigin::kAnchor && !Filtered(p.map_index);
+    });
+    NoteLosMisses(los);
+  }
   MarkShadowed(pairings, blocked_m, reference.position_m);
 
   std::vector<double> variances;

@@ -257,7 +257,10 @@ struct MirrorOutcome {
   double final_error_m = 0.0;
 };
 
-MirrorOutcome StartOnTheMirror(const SlamOptions& options, bool drop_a_los) {
+// The tracker starts on the mirror image; the ranges come from there before step jump_step (the
+// track is right) and from the truth from then on (the track is lost: both LOS ranges still fit).
+// At drop_step (0: never) anchor 0's LOS is not detected.
+MirrorOutcome RunFromTheMirror(const SlamOptions& options, int drop_step, int jump_step) {
   const auto plan = mint::testing::EmptySquareRoom();
   // Not the fixture's anchors: they lie on the room's diagonal, about which the whole room is
   // symmetric, so there the mirror image explains every VA as well as the truth does.
@@ -270,8 +273,8 @@ MirrorOutcome StartOnTheMirror(const SlamOptions& options, bool drop_a_los) {
   core::Rng rng(11, 0);
   MirrorOutcome out;
   for (int k = 1; k <= 40; ++k) {
-    auto ranges = MeasureRanges(vas, plan, truth_m, MeasurementModel{}, rng);
-    if (drop_a_los && k == 5) {  // anchor 0's LOS (its shortest range) is not detected once
+    auto ranges = MeasureRanges(vas, plan, k < jump_step ? mirror_m : truth_m, MeasurementModel{}, rng);
+    if (k == drop_step) {  // anchor 0's LOS (its shortest range) is not detected once
       auto& r = ranges[0].ranges;
       r.erase(std::min_element(r.begin(), r.end(), [](const auto& a, const auto& b) { return a.range_m < b.range_m; }));
     }
@@ -282,15 +285,32 @@ MirrorOutcome StartOnTheMirror(const SlamOptions& options, bool drop_a_los) {
   return out;
 }
 
-TEST(SlamTracker, FloorPlanMapRestartsATrackOnTheMirrorIntersectionAfterALosLoss) {
+// Lost from the first step; the LOS is missed at step 5, or never.
+MirrorOutcome StartOnTheMirror(const SlamOptions& options, bool drop_a_los) {
+  return RunFromTheMirror(options, drop_a_los ? 5 : 0, 1);
+}
+
+SlamOptions FloorPlanMapOptions() {
   SlamOptions options;
   options.prior_max_order = 1;
   options.prior_visibility = true;
   options.discovery.enabled = false;
+  return options;
+}
+
+TEST(SlamTracker, FloorPlanMapRestartsATrackOnTheMirrorIntersectionAfterALosLoss) {
+  SlamOptions options = FloorPlanMapOptions();
 
   const MirrorOutcome restarted = StartOnTheMirror(options, true);
   EXPECT_TRUE(restarted.relocalized);
   EXPECT_LT(restarted.final_error_m, 0.05);
+
+  // Without stage 1 the miss is read off the joint association: the search runs all the same.
+  SlamOptions joint = options;
+  joint.reassociate = false;
+  const MirrorOutcome without_stage1 = StartOnTheMirror(joint, true);
+  EXPECT_TRUE(without_stage1.relocalized);
+  EXPECT_LT(without_stage1.final_error_m, 0.05);
 
   // Without a LOS loss the search does not run; without the recovery the track stays lost.
   const MirrorOutcome unwatched = StartOnTheMirror(options, false);
@@ -300,6 +320,28 @@ TEST(SlamTracker, FloorPlanMapRestartsATrackOnTheMirrorIntersectionAfterALosLoss
   const MirrorOutcome disabled = StartOnTheMirror(options, true);
   EXPECT_FALSE(disabled.relocalized);
   EXPECT_GT(disabled.final_error_m, 1.0);
+}
+
+TEST(SlamTracker, FloorPlanSearchEndsFloorPlanWatchStepsAfterTheLastLosMiss) {
+  SlamOptions options = FloorPlanMapOptions();
+  options.recovery.floor_plan_watch_steps = 5;
+  constexpr int kJump = 11;  // the track is lost from this step on; a restart takes 3 steps
+
+  // A miss at step 3 opens the search until step 8, before the track is lost: it stays lost.
+  const MirrorOutcome expired = RunFromTheMirror(options, 3, kJump);
+  EXPECT_FALSE(expired.relocalized);
+  EXPECT_GT(expired.final_error_m, 1.0);
+
+  // A miss after the jump restarts it.
+  const MirrorOutcome watched = RunFromTheMirror(options, kJump + 1, kJump);
+  EXPECT_TRUE(watched.relocalized);
+  EXPECT_LT(watched.final_error_m, 0.05);
+
+  // The same early miss with a window reaching past the jump's first 3 steps restarts it too.
+  options.recovery.floor_plan_watch_steps = 12;
+  const MirrorOutcome long_window = RunFromTheMirror(options, 3, kJump);
+  EXPECT_TRUE(long_window.relocalized);
+  EXPECT_LT(long_window.final_error_m, 0.05);
 }
 
 TEST(SlamTracker, ValidateNamesTheBadOption) {

@@ -236,8 +236,9 @@ class SlamTracker {
   estimation::UpdateResult Update(estimation::State& state, const std::vector<Pairing>& pairings,
                                   const std::vector<double>& variances_m2) const;
   void AddToState(std::size_t map_index);
-  // Marks the anchors without a LOS pairing at stage 1 (Entry::los_missed) and remembers the
-  // step of such a miss (last_los_miss_step_, the recovery's watch window).
+  // Marks the anchors without a LOS pairing at stage 1 (without reassociate: in the joint
+  // association) (Entry::los_missed) and remembers the step of such a miss
+  // (last_los_miss_step_, the recovery's watch window).
   void NoteLosMisses(const std::vector<Pairing>& los);
   // Shadow cone: positions of the anchors whose LOS was missed at this step.
   [[nodiscard]] std::vector<Vec2> BlockedAnchors() const;
@@ -273,7 +274,7 @@ class SlamTracker {
   estimation::State state_;
   std::vector<Entry> map_;
   int step_ = 0;
-  int last_los_miss_step_ = -1;  // the last step at which an anchor's LOS found no range at stage 1
+  int last_los_miss_step_ = -1;  // the last step at which an anchor's LOS found no range
   int next_discovered_id_ = kFirstDiscoveredVaId;
 };
 

@@ -55,8 +55,8 @@ struct TrackRecoveryOptions {
   /// with 2 good tracks restart too (8 times on seeds 4 and 7; one left with 0.42 m rmse).
   int min_margin_floor_plan = 4;
   /// With the floor plan's VAs, the search runs only within this many steps after a step at which
-  /// an anchor's LOS found no range at stage 1 (so it needs the tracker's reassociate), and while
-  /// a pending candidate's chain continues, >= 0 (0: the miss step only). Ray tracing every
+  /// an anchor's LOS found no range (at stage 1, or in the joint association without the
+  /// tracker's reassociate), and while a pending candidate's chain continues, >= 0 (0: the miss step only). Ray tracing every
   /// candidate costs about 110 us per step, and both lost known-VA tracks began with a LOS lost
   /// at a corner. 10 steps: both restart, no good track restarts (seeds 1-9); searching at every
   /// step after the first miss restarts one good track more (seed 5, harmlessly).
