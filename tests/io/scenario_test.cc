@@ -201,6 +201,56 @@ TEST(LoadScenario, ReadsTheSeminarRoomExampleWithTheValuesItStates) {
   EXPECT_DOUBLE_EQ(c.divergence.last_fraction, 0.2);
 }
 
+TEST(LoadScenario, ReadsTheSlamExamplesWithTheValuesTheyState) {
+  // Act
+  const Scenario anchors_only = LoadScenario(Example("seminar_room_slam.yaml"));
+  const Scenario known = LoadScenario(Example("seminar_room_slam_known.yaml"));
+  const auto& o = anchors_only.mint.slam;
+  const auto& k = known.mint.slam;
+
+  // Assert: the anchors-only example, every key it sets.
+  EXPECT_EQ(anchors_only.method, "slam");
+  EXPECT_EQ(anchors_only.mint.name, "seminar_room_slam");
+  EXPECT_DOUBLE_EQ(o.cutoff_m, 0.15);
+  EXPECT_EQ(o.prior_max_order, 0);
+  EXPECT_FALSE(o.prior_visibility);
+  EXPECT_TRUE(o.reassociate);
+  EXPECT_DOUBLE_EQ(o.innovation_gate_chi2, 9.0);
+  EXPECT_DOUBLE_EQ(o.motion.accel_sigma_mps2, 0.5);  // slam.motion, not mint.motion's 1.0
+  EXPECT_DOUBLE_EQ(anchors_only.mint.mint.motion.accel_sigma_mps2, 1.0);
+  EXPECT_TRUE(o.va_filter);
+  EXPECT_DOUBLE_EQ(o.va_filter_sigma_m, 0.0623);
+  EXPECT_TRUE(o.va_filter_keeps_associating);
+  EXPECT_DOUBLE_EQ(o.amplitude_gate_probability, 0.001);
+  EXPECT_DOUBLE_EQ(o.shadow_cone_deg, 30.0);
+  EXPECT_DOUBLE_EQ(o.shadow_sigma_m, 0.05);
+  EXPECT_DOUBLE_EQ(o.los_reacquire_m, 0.4);
+  EXPECT_TRUE(o.recovery.enabled);
+  EXPECT_EQ(o.recovery.min_margin, 2);
+  EXPECT_EQ(o.recovery.lost_steps, 3);
+  EXPECT_TRUE(o.discovery.enabled);
+  EXPECT_DOUBLE_EQ(o.discovery.max_agent_sigma_m, 0.1);
+  EXPECT_EQ(o.discovery.group_size, 10);
+  EXPECT_DOUBLE_EQ(o.discovery.min_group_baseline_m, 0.3);
+  EXPECT_DOUBLE_EQ(o.discovery.max_fit_rms_m, 0.03);
+  EXPECT_EQ(o.discovery.min_measurements, 10);
+  EXPECT_EQ(o.discovery.resolve_misses, 3);
+  EXPECT_TRUE(o.discovery.verify);
+
+  // The known-VA example extends it: its own keys, the rest inherited.
+  EXPECT_EQ(known.method, "slam");
+  EXPECT_EQ(known.mint.name, "seminar_room_slam_known");
+  EXPECT_EQ(k.prior_max_order, 2);
+  EXPECT_DOUBLE_EQ(k.prior_va_sigma_m, 0.05);
+  EXPECT_TRUE(k.prior_visibility);
+  EXPECT_FALSE(k.discovery.enabled);
+  EXPECT_EQ(k.recovery.min_margin_floor_plan, 4);
+  EXPECT_EQ(k.recovery.floor_plan_watch_steps, 10);
+  EXPECT_DOUBLE_EQ(k.motion.accel_sigma_mps2, 0.5);
+  EXPECT_DOUBLE_EQ(k.los_reacquire_m, 0.4);
+  EXPECT_EQ(k.recovery.min_margin, 2);
+}
+
 TEST(LoadScenario, AppliesCommandLineOverrides) {
   // Arrange
   ScenarioOverrides overrides;
@@ -346,6 +396,14 @@ TEST_F(ScenarioFiles, NamesAnUnknownTopLevelKey) {
 TEST_F(ScenarioFiles, NamesAnUnknownNestedKeyWithItsPath) {
   const std::string path = Write("nested_typo.yaml", TinyWithLine(20, "    durations_s: 0.5e-9"));
   ExpectError(ErrorOf(path), path, 20, {"channel.pulse.durations_s", "unknown key", "duration_s"});
+}
+
+TEST_F(ScenarioFiles, NamesABadMotionKeyOfEitherTrackerWithItsPath) {
+  const std::string mint_path = Override("mint_motion.yaml", "mint:\n  motion:\n    accel_sigma_mps2: 0\n");
+  ExpectError(ErrorOf(mint_path), mint_path, 4, {"mint.motion.accel_sigma_mps2"});
+  const std::string slam_path = Write("slam_motion.yaml", "extends: " + Example("seminar_room_slam.yaml") +
+                                                              "\nslam:\n  motion:\n    accel_sigma: 0.5\n");
+  ExpectError(ErrorOf(slam_path), slam_path, 4, {"slam.motion.accel_sigma", "unknown key", "accel_sigma_mps2"});
 }
 
 TEST_F(ScenarioFiles, NamesAZeroLengthWall) {

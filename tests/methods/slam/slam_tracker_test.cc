@@ -344,6 +344,35 @@ TEST(SlamTracker, FloorPlanSearchEndsFloorPlanWatchStepsAfterTheLastLosMiss) {
   EXPECT_LT(long_window.final_error_m, 0.05);
 }
 
+TEST(SlamTracker, InitializeForgetsAnEarlierLosMiss) {
+  const auto plan = mint::testing::EmptySquareRoom();
+  const std::vector<Vec2> anchors_m{Vec2(1.0, 5.0), Vec2(5.0, 2.0)};
+  const auto vas = geometry::VirtualAnchorSet::Generate(anchors_m, plan, 1);
+  const Vec2 truth_m(2.0, 2.5);
+  const Vec2 mirror_m(3.68, 4.74);  // about the anchors' line: both LOS ranges fit there too
+  SlamTracker tracker(FloorPlanMapOptions(), vas, plan, kSigma1M);
+  core::Rng rng(11, 0);
+  // A first run, correct on the mirror point, misses anchor 0's LOS at its last step.
+  tracker.Initialize(0.0, mirror_m);
+  for (int k = 1; k <= 5; ++k) {
+    auto ranges = MeasureRanges(vas, plan, mirror_m, MeasurementModel{}, rng);
+    if (k == 5) {
+      auto& r = ranges[0].ranges;
+      r.erase(std::min_element(r.begin(), r.end(), [](const auto& a, const auto& b) { return a.range_m < b.range_m; }));
+    }
+    tracker.Step(0.1 * k, ranges);
+  }
+  // A new run starts lost on the mirror point: that miss belongs to the old run and opens no
+  // search (kept, it would: the new run's step count starts again below it).
+  tracker.Initialize(0.0, mirror_m);
+  bool relocalized = false;
+  for (int k = 1; k <= 8; ++k) {
+    relocalized = tracker.Step(0.1 * k, MeasureRanges(vas, plan, truth_m, MeasurementModel{}, rng)).relocalized ||
+                  relocalized;
+  }
+  EXPECT_FALSE(relocalized);
+}
+
 TEST(SlamTracker, ValidateNamesTheBadOption) {
   SlamOptions options;
   options.cutoff_m = 0.0;
