@@ -257,30 +257,38 @@ struct MirrorOutcome {
   double final_error_m = 0.0;
 };
 
+// The room, anchors and the two points of a mirror test.
+struct MirrorSetup {
+  geometry::FloorPlan plan = mint::testing::EmptySquareRoom();
+  // Not the fixture's anchors: they lie on the room's diagonal, about which the whole room is
+  // symmetric, so there the mirror image explains every VA as well as the truth does.
+  std::vector<Vec2> anchors_m{Vec2(1.0, 5.0), Vec2(5.0, 2.0)};
+  Vec2 truth_m = Vec2(2.0, 2.5);
+  Vec2 mirror_m = Vec2(3.68, 4.74);  // about the anchors' line
+  int max_order = 1;                 // of the map and of the measured paths
+};
+
 // The tracker starts on the mirror image; the ranges come from there before step jump_step (the
 // track is right) and from the truth from then on (the track is lost: both LOS ranges still fit).
 // At drop_step (0: never) anchor 0's LOS is not detected.
-MirrorOutcome RunFromTheMirror(const SlamOptions& options, int drop_step, int jump_step) {
-  const auto plan = mint::testing::EmptySquareRoom();
-  // Not the fixture's anchors: they lie on the room's diagonal, about which the whole room is
-  // symmetric, so there the mirror image explains every VA as well as the truth does.
-  const std::vector<Vec2> anchors_m{Vec2(1.0, 5.0), Vec2(5.0, 2.0)};
-  const auto vas = geometry::VirtualAnchorSet::Generate(anchors_m, plan, 1);
-  const Vec2 truth_m(2.0, 2.5);
-  const Vec2 mirror_m(3.68, 4.74);  // about the anchors' line
-  SlamTracker tracker(options, vas, plan, kSigma1M);
-  tracker.Initialize(0.0, mirror_m);
+MirrorOutcome RunFromTheMirror(const SlamOptions& options, int drop_step, int jump_step,
+                               const MirrorSetup& setup = {}) {
+  const auto vas = geometry::VirtualAnchorSet::Generate(setup.anchors_m, setup.plan, setup.max_order);
+  MeasurementModel model;
+  model.max_order = setup.max_order;
+  SlamTracker tracker(options, vas, setup.plan, kSigma1M);
+  tracker.Initialize(0.0, setup.mirror_m);
   core::Rng rng(11, 0);
   MirrorOutcome out;
   for (int k = 1; k <= 40; ++k) {
-    auto ranges = MeasureRanges(vas, plan, k < jump_step ? mirror_m : truth_m, MeasurementModel{}, rng);
+    auto ranges = MeasureRanges(vas, setup.plan, k < jump_step ? setup.mirror_m : setup.truth_m, model, rng);
     if (k == drop_step) {  // anchor 0's LOS (its shortest range) is not detected once
       auto& r = ranges[0].ranges;
       r.erase(std::min_element(r.begin(), r.end(), [](const auto& a, const auto& b) { return a.range_m < b.range_m; }));
     }
     const auto step = tracker.Step(0.1 * k, ranges);
     out.relocalized = out.relocalized || step.relocalized;
-    out.final_error_m = (step.position_m - truth_m).norm();
+    out.final_error_m = (step.position_m - setup.truth_m).norm();
   }
   return out;
 }
@@ -342,6 +350,28 @@ TEST(SlamTracker, FloorPlanSearchEndsFloorPlanWatchStepsAfterTheLastLosMiss) {
   const MirrorOutcome long_window = RunFromTheMirror(options, 3, kJump);
   EXPECT_TRUE(long_window.relocalized);
   EXPECT_LT(long_window.final_error_m, 0.05);
+}
+
+// The fixture's anchors lie on the square room's anti-diagonal, so the mirror image of a point
+// about their line explains the measured ranges with some VA as well as the truth does: counted
+// everywhere, 31 VAs of order <= 2 match at either point (noise-free count). Only visibility
+// breaks the tie: the truth sees 23 VAs, all matching; at the mirror point the pillar leaves 18
+// matching ones visible. Scored where visible, the truth wins by 5 (the margin is 4) and the lost
+// track restarts there; scored everywhere it would not (checked by swapping the score).
+TEST(SlamTracker, FloorPlanRecoveryScoresEachVaOnlyWhereItIsVisible) {
+  MirrorSetup setup;
+  setup.plan = mint::testing::SquareRoomWithPillar();
+  setup.anchors_m = mint::testing::TwoAnchors();
+  setup.truth_m = Vec2(2.7, 1.6);
+  setup.mirror_m = Vec2(4.4, 3.3);  // (6 - y, 6 - x): about the anchors' line x + y = 6
+  setup.max_order = 2;
+  SlamOptions options = FloorPlanMapOptions();
+  options.prior_max_order = 2;
+
+  const MirrorOutcome outcome = RunFromTheMirror(options, 5, 1, setup);
+
+  EXPECT_TRUE(outcome.relocalized);
+  EXPECT_LT(outcome.final_error_m, 0.05);
 }
 
 TEST(SlamTracker, InitializeForgetsAnEarlierLosMiss) {
