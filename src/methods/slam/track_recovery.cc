@@ -109,15 +109,6 @@ std::vector<Vec2> LosCandidates(std::span<const MapPoint> anchors, std::span<con
 void TrackRecovery::Reset() { pending_steps_ = 0; }
 
 std::optional<Restart> TrackRecovery::Check(double t_s, const Vec2& estimate_m, std::span<const MapPoint> anchors,
-                                            std::span<const MapPoint> map,
-                                            std::span<const core::AnchorRanges> measurements) {
-  return Check(
-      t_s, estimate_m, anchors,
-      [&](const Vec2& p_m) { return CountMatches(p_m, map, measurements, options_.match_tolerance_m); },
-      measurements);
-}
-
-std::optional<Restart> TrackRecovery::Check(double t_s, const Vec2& estimate_m, std::span<const MapPoint> anchors,
                                             const std::function<int(const Vec2&)>& score_at,
                                             std::span<const core::AnchorRanges> measurements) {
   if (!options_.enabled) return std::nullopt;

@@ -5,6 +5,7 @@
 #include "mirage/methods/slam/track_recovery.h"
 
 #include <algorithm>
+#include <functional>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -24,6 +25,14 @@ std::vector<MapPoint> Map() {
   map.push_back({1, Vec2(4.0, 6.0)});
   map.push_back({1, Vec2(-6.0, 0.0)});
   return map;
+}
+
+// The score the tracker gives without a floor plan: the map points matched at p (the default
+// 5 cm tolerance). The measurements must outlive the returned function.
+std::function<int(const Vec2&)> ScoreOnTheMap(const std::vector<core::AnchorRanges>& measured) {
+  return [&measured](const Vec2& p_m) {
+    return CountMatches(p_m, Map(), measured, TrackRecoveryOptions{}.match_tolerance_m);
+  };
 }
 
 // Exact ranges of every map point from p_m, plus `clutter` weak ranges per anchor, uniform
@@ -91,7 +100,8 @@ TEST(TrackRecovery, RestartsAnEstimateOnTheMirrorImageAfterLostSteps) {
     const double t_s = 0.1 * steps;
     const Vec2 truth_m = Vec2(1.0, 1.5) + velocity_mps * t_s;
     const Vec2 mirror_m(truth_m.x(), -truth_m.y());  // both LOS ranges fit here, no VA does
-    restart = recovery.Check(t_s, mirror_m, kAnchors, Map(), Measure(truth_m, 15, rng));
+    const auto measured = Measure(truth_m, 15, rng);
+    restart = recovery.Check(t_s, mirror_m, kAnchors, ScoreOnTheMap(measured), measured);
     if (restart) {
       EXPECT_LT((restart->position_m - truth_m).norm(), 1e-6);
       EXPECT_LT((restart->velocity_mps - velocity_mps).norm(), 1e-6);
@@ -110,7 +120,7 @@ TEST(TrackRecovery, NeverRestartsACorrectEstimate) {
     for (auto& anchor : m) {
       for (auto& r : anchor.ranges) r.range_m += rng.Normal(0.0, 0.01);
     }
-    ASSERT_FALSE(recovery.Check(0.1 * k, truth_m, kAnchors, Map(), m).has_value()) << "step " << k;
+    ASSERT_FALSE(recovery.Check(0.1 * k, truth_m, kAnchors, ScoreOnTheMap(m), m).has_value()) << "step " << k;
   }
 }
 
@@ -120,7 +130,8 @@ TEST(TrackRecovery, DisabledNeverRestarts) {
   TrackRecovery recovery(options);
   core::Rng rng(3, 0);
   for (int k = 0; k < 10; ++k) {
-    EXPECT_FALSE(recovery.Check(0.1 * k, Vec2(1.0, -1.5), kAnchors, Map(), Measure(Vec2(1.0, 1.5), 0, rng)));
+    const auto measured = Measure(Vec2(1.0, 1.5), 0, rng);
+    EXPECT_FALSE(recovery.Check(0.1 * k, Vec2(1.0, -1.5), kAnchors, ScoreOnTheMap(measured), measured));
   }
 }
 

@@ -56,10 +56,11 @@ struct TrackRecoveryOptions {
   int min_margin_floor_plan = 4;
   /// With the floor plan's VAs, the search runs only within this many steps after a step at which
   /// an anchor's LOS found no range (at stage 1, or in the joint association without the
-  /// tracker's reassociate), and while a pending candidate's chain continues, >= 0 (0: the miss step only). Ray tracing every
-  /// candidate costs about 110 us per step, and both lost known-VA tracks began with a LOS lost
-  /// at a corner. 10 steps: both restart, no good track restarts (seeds 1-9); searching at every
-  /// step after the first miss restarts one good track more (seed 5, harmlessly).
+  /// tracker's reassociate), and while a pending candidate's chain continues, >= 0 (0: the miss
+  /// step only). Ray tracing every candidate costs about 110 us per step, and both lost known-VA
+  /// tracks began with a LOS lost at a corner. 10 steps: both restart, no good track restarts
+  /// (seeds 1-9); searching at every step after the first miss restarts one good track more
+  /// (seed 5, harmlessly).
   int floor_plan_watch_steps = 10;
   /// Consecutive steps at which a candidate must win before the restart, >= 1.
   int lost_steps = 3;
@@ -112,13 +113,9 @@ class TrackRecovery {
   [[nodiscard]] bool pending() const { return pending_steps_ > 0; }
 
   /// Checks the estimate after the step at t_s; returns where to restart when the track is
-  /// lost. `anchors` are the physical anchors (the LOS centres), `map` all map points that
-  /// score (the anchors among them).
-  std::optional<Restart> Check(double t_s, const Vec2& estimate_m, std::span<const MapPoint> anchors,
-                               std::span<const MapPoint> map, std::span<const core::AnchorRanges> measurements);
-
-  /// The same with the score of a position given as a function: the number of map points whose
-  /// expected range a measured range matches there (e.g. VAs counted only where visible).
+  /// lost. `anchors` are the physical anchors (the LOS centres); score_at(p) is the number of
+  /// map points whose expected range a measured range matches at p (CountMatches over the map,
+  /// plus the floor plan's VAs counted only where visible, as the tracker scores).
   std::optional<Restart> Check(double t_s, const Vec2& estimate_m, std::span<const MapPoint> anchors,
                                const std::function<int(const Vec2&)>& score_at,
                                std::span<const core::AnchorRanges> measurements);
