@@ -510,8 +510,8 @@ bool SlamTracker::RecoverTrack(double t_s, std::span<const core::AnchorRanges> m
   const bool floor_plan = ScoresFloorPlanVas(options_, *plan_);
   // Ray tracing every candidate costs about 110 us per step (BM_SlamStep40Vas with the search at
   // every step): with the floor plan the search runs only for a while after an anchor's LOS went
-  // missing at stage 1, which is how the lost known-VA tracks began (an overshoot at a corner
-  // took the LOS out of the cut-off).
+  // missing (at stage 1, or in the joint association without reassociate), which is how the lost
+  // known-VA tracks began (an overshoot at a corner took the LOS out of the cut-off).
   const bool watching =
       last_los_miss_step_ >= 0 && step_ - last_los_miss_step_ <= options_.recovery.floor_plan_watch_steps;
   if (floor_plan && !watching && !recovery_.pending()) return false;

@@ -260,8 +260,8 @@ struct MirrorOutcome {
 // The room, anchors and the two points of a mirror test.
 struct MirrorSetup {
   geometry::FloorPlan plan = mint::testing::EmptySquareRoom();
-  // Not the fixture's anchors: they lie on the room's diagonal, about which the whole room is
-  // symmetric, so there the mirror image explains every VA as well as the truth does.
+  // Not the fixture's anchors: they lie on the room's anti-diagonal, about which the whole room
+  // is symmetric, so there the mirror image explains every VA as well as the truth does.
   std::vector<Vec2> anchors_m{Vec2(1.0, 5.0), Vec2(5.0, 2.0)};
   Vec2 truth_m = Vec2(2.0, 2.5);
   Vec2 mirror_m = Vec2(3.68, 4.74);  // about the anchors' line
@@ -332,24 +332,29 @@ TEST(SlamTracker, FloorPlanMapRestartsATrackOnTheMirrorIntersectionAfterALosLoss
 
 TEST(SlamTracker, FloorPlanSearchEndsFloorPlanWatchStepsAfterTheLastLosMiss) {
   SlamOptions options = FloorPlanMapOptions();
-  options.recovery.floor_plan_watch_steps = 5;
-  constexpr int kJump = 11;  // the track is lost from this step on; a restart takes 3 steps
+  // The track is lost from the 11th step on. Steps counted as the tracker does (the k-th call is
+  // step k - 1): a miss in the 3rd call is step 2, the loss begins at step 10, and once a
+  // candidate has won, the pending restart keeps the search running until it completes.
+  constexpr int kMissCall = 3;
+  constexpr int kJumpCall = 11;
 
-  // A miss at step 3 opens the search until step 8, before the track is lost: it stays lost.
-  const MirrorOutcome expired = RunFromTheMirror(options, 3, kJump);
+  // A window of 7 ends at step 9, one step before the loss: the track stays lost.
+  options.recovery.floor_plan_watch_steps = 7;
+  const MirrorOutcome expired = RunFromTheMirror(options, kMissCall, kJumpCall);
   EXPECT_FALSE(expired.relocalized);
   EXPECT_GT(expired.final_error_m, 1.0);
 
-  // A miss after the jump restarts it.
-  const MirrorOutcome watched = RunFromTheMirror(options, kJump + 1, kJump);
+  // A window of 8 reaches step 10, the first lost step: the restart completes.
+  options.recovery.floor_plan_watch_steps = 8;
+  const MirrorOutcome just_reached = RunFromTheMirror(options, kMissCall, kJumpCall);
+  EXPECT_TRUE(just_reached.relocalized);
+  EXPECT_LT(just_reached.final_error_m, 0.05);
+
+  // With the short window, a miss after the loss restarts it.
+  options.recovery.floor_plan_watch_steps = 7;
+  const MirrorOutcome watched = RunFromTheMirror(options, kJumpCall + 1, kJumpCall);
   EXPECT_TRUE(watched.relocalized);
   EXPECT_LT(watched.final_error_m, 0.05);
-
-  // The same early miss with a window reaching past the jump's first 3 steps restarts it too.
-  options.recovery.floor_plan_watch_steps = 12;
-  const MirrorOutcome long_window = RunFromTheMirror(options, 3, kJump);
-  EXPECT_TRUE(long_window.relocalized);
-  EXPECT_LT(long_window.final_error_m, 0.05);
 }
 
 // The fixture's anchors lie on the square room's anti-diagonal, so the mirror image of a point

@@ -28,7 +28,9 @@ std::vector<MapPoint> Map() {
 }
 
 // The score the tracker gives without a floor plan: the map points matched at p (the default
-// 5 cm tolerance). The measurements must outlive the returned function.
+// 5 cm tolerance). The measurements must outlive the returned function (a temporary cannot be
+// passed).
+std::function<int(const Vec2&)> ScoreOnTheMap(std::vector<core::AnchorRanges>&& measured) = delete;
 std::function<int(const Vec2&)> ScoreOnTheMap(const std::vector<core::AnchorRanges>& measured) {
   return [&measured](const Vec2& p_m) {
     return CountMatches(p_m, Map(), measured, TrackRecoveryOptions{}.match_tolerance_m);

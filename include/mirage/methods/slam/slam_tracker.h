@@ -236,8 +236,8 @@ class SlamTracker {
   estimation::UpdateResult Update(estimation::State& state, const std::vector<Pairing>& pairings,
                                   const std::vector<double>& variances_m2) const;
   void AddToState(std::size_t map_index);
-  // Marks the anchors without a LOS pairing at stage 1 (without reassociate: in the joint
-  // association) (Entry::los_missed) and remembers the step of such a miss
+  // Marks the anchors without a LOS pairing in `los` (Entry::los_missed): the pairings of stage 1,
+  // or of the joint association without reassociate. Remembers the step of such a miss
   // (last_los_miss_step_, the recovery's watch window).
   void NoteLosMisses(const std::vector<Pairing>& los);
   // Shadow cone: positions of the anchors whose LOS was missed at this step.
@@ -261,7 +261,8 @@ class SlamTracker {
     Vec2 amplitude_law_at_m = Vec2::Zero();  ///< agent position of that estimate
     double amplitude_law_range_m = 0.0;       ///< expected range there
     /// An anchor whose LOS found no range at the last step's stage 1 (LOS re-acquisition and
-    /// shadow cone).
+    /// shadow cone). Without reassociate it is set from the joint association, where only the
+    /// recovery's watch window uses it (through last_los_miss_step_).
     bool los_missed = false;
   };
 
