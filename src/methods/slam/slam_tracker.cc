@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <iterator>
 #include <limits>
 #include <unordered_set>
 
@@ -360,15 +359,9 @@ SlamStepResult SlamTracker::Step(double t_s, std::span<const core::AnchorRanges>
   }
 
   std::vector<Pairing> pairings = Associate(reference, measurements, false, options_.innovation_gate_chi2);
-  if (!options_.reassociate) {
-    // Without stage 1 the LOS misses are read off the joint association: the floor-plan
-    // recovery's watch window needs them (the shadow cone and the re-acquisition are stage 1's).
-    std::vector<Pairing> los;
-    std::copy_if(pairings.begin(), pairings.end(), std::back_inserter(los), [&](const Pairing& p) {
-      return map_[p.map_index].va.origin == MapVaOrigin::kAnchor && !Filtered(p.map_index);
-    });
-    NoteLosMisses(los);
-  }
+  // Without stage 1 the LOS misses are read off the joint association: the floor-plan recovery's
+  // watch window needs them (the shadow cone and the re-acquisition are stage 1's).
+  if (!options_.reassociate) NoteLosMisses(pairings);
   MarkShadowed(pairings, blocked_m, reference.position_m);
 
   std::vector<double> variances;
@@ -464,12 +457,17 @@ SlamStepResult SlamTracker::Step(double t_s, std::span<const core::AnchorRanges>
   return result;
 }
 
-void SlamTracker::NoteLosMisses(const std::vector<Pairing>& los) {
+void SlamTracker::NoteLosMisses(const std::vector<Pairing>& pairings) {
+  // A LOS pairing counts only if the VA filter lets it update (stage 1 has dropped the others).
+  const auto is_los_of = [&](const Pairing& p, int anchor_index) {
+    return p.anchor_index == anchor_index && map_[p.map_index].va.origin == MapVaOrigin::kAnchor &&
+           !Filtered(p.map_index);
+  };
   bool any_missed = false;
   for (auto& e : map_) {
     if (e.va.origin != MapVaOrigin::kAnchor) continue;
-    e.los_missed =
-        std::none_of(los.begin(), los.end(), [&](const Pairing& p) { return p.anchor_index == e.va.anchor_index; });
+    e.los_missed = std::none_of(pairings.begin(), pairings.end(),
+                                [&](const Pairing& p) { return is_los_of(p, e.va.anchor_index); });
     any_missed = any_missed || e.los_missed;
   }
   if (any_missed) last_los_miss_step_ = step_;

@@ -257,6 +257,12 @@ struct MirrorOutcome {
   double final_error_m = 0.0;
 };
 
+// Anchor 0's LOS (its shortest range) is not detected.
+void DropAnchor0Los(std::vector<core::AnchorRanges>& ranges) {
+  auto& r = ranges[0].ranges;
+  r.erase(std::min_element(r.begin(), r.end(), [](const auto& a, const auto& b) { return a.range_m < b.range_m; }));
+}
+
 // The room, anchors and the two points of a mirror test.
 struct MirrorSetup {
   geometry::FloorPlan plan = mint::testing::EmptySquareRoom();
@@ -282,10 +288,7 @@ MirrorOutcome RunFromTheMirror(const SlamOptions& options, int drop_step, int ju
   MirrorOutcome out;
   for (int k = 1; k <= 40; ++k) {
     auto ranges = MeasureRanges(vas, setup.plan, k < jump_step ? setup.mirror_m : setup.truth_m, model, rng);
-    if (k == drop_step) {  // anchor 0's LOS (its shortest range) is not detected once
-      auto& r = ranges[0].ranges;
-      r.erase(std::min_element(r.begin(), r.end(), [](const auto& a, const auto& b) { return a.range_m < b.range_m; }));
-    }
+    if (k == drop_step) DropAnchor0Los(ranges);
     const auto step = tracker.Step(0.1 * k, ranges);
     out.relocalized = out.relocalized || step.relocalized;
     out.final_error_m = (step.position_m - setup.truth_m).norm();
@@ -380,21 +383,18 @@ TEST(SlamTracker, FloorPlanRecoveryScoresEachVaOnlyWhereItIsVisible) {
 }
 
 TEST(SlamTracker, InitializeForgetsAnEarlierLosMiss) {
-  const auto plan = mint::testing::EmptySquareRoom();
-  const std::vector<Vec2> anchors_m{Vec2(1.0, 5.0), Vec2(5.0, 2.0)};
-  const auto vas = geometry::VirtualAnchorSet::Generate(anchors_m, plan, 1);
-  const Vec2 truth_m(2.0, 2.5);
-  const Vec2 mirror_m(3.68, 4.74);  // about the anchors' line: both LOS ranges fit there too
+  const MirrorSetup setup;  // both LOS ranges fit at the mirror point too
+  const auto& plan = setup.plan;
+  const Vec2& truth_m = setup.truth_m;
+  const Vec2& mirror_m = setup.mirror_m;
+  const auto vas = geometry::VirtualAnchorSet::Generate(setup.anchors_m, plan, setup.max_order);
   SlamTracker tracker(FloorPlanMapOptions(), vas, plan, kSigma1M);
   core::Rng rng(11, 0);
   // A first run, correct on the mirror point, misses anchor 0's LOS at its last step.
   tracker.Initialize(0.0, mirror_m);
   for (int k = 1; k <= 5; ++k) {
     auto ranges = MeasureRanges(vas, plan, mirror_m, MeasurementModel{}, rng);
-    if (k == 5) {
-      auto& r = ranges[0].ranges;
-      r.erase(std::min_element(r.begin(), r.end(), [](const auto& a, const auto& b) { return a.range_m < b.range_m; }));
-    }
+    if (k == 5) DropAnchor0Los(ranges);
     tracker.Step(0.1 * k, ranges);
   }
   // A new run starts lost on the mirror point: that miss belongs to the old run and opens no

@@ -236,10 +236,10 @@ class SlamTracker {
   estimation::UpdateResult Update(estimation::State& state, const std::vector<Pairing>& pairings,
                                   const std::vector<double>& variances_m2) const;
   void AddToState(std::size_t map_index);
-  // Marks the anchors without a LOS pairing in `los` (Entry::los_missed): the pairings of stage 1,
-  // or of the joint association without reassociate. Remembers the step of such a miss
-  // (last_los_miss_step_, the recovery's watch window).
-  void NoteLosMisses(const std::vector<Pairing>& los);
+  // Marks the anchors without an unfiltered LOS pairing among `pairings` (Entry::los_missed): the
+  // pairings of stage 1, or of the joint association without reassociate. Remembers the step of
+  // such a miss (last_los_miss_step_, the recovery's watch window).
+  void NoteLosMisses(const std::vector<Pairing>& pairings);
   // Shadow cone: positions of the anchors whose LOS was missed at this step.
   [[nodiscard]] std::vector<Vec2> BlockedAnchors() const;
   // Shadow cone: flags the pairings of VAs without a visibility region whose path arrives at
