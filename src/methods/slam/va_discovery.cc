@@ -8,6 +8,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "mirage/estimation/init/range_bancroft.h"
+#include "mirage/estimation/init/range_consensus.h"
 #include "mirage/estimation/init/range_point_fit.h"
 #include "mirage/estimation/range_association.h"
 
@@ -48,6 +49,13 @@ std::vector<std::string> Validate(const DiscoveryOptions& o) {
   if (!(o.duplicate_radius_m >= 0.0) || !std::isfinite(o.duplicate_radius_m)) {
     problems.push_back("duplicate_radius_m must be >= 0 m");
   }
+  at_least(o.sweep_window_steps, 3, "sweep_window_steps");
+  at_least(o.sweep_every_steps, 1, "sweep_every_steps");
+  positive(o.sweep_min_baseline_m, "sweep_min_baseline_m");
+  positive(o.sweep_gate_m, "sweep_gate_m");
+  if (!(o.sweep_min_support > 0.0 && o.sweep_min_support <= 1.0)) {
+    problems.push_back("sweep_min_support must be in (0, 1]");
+  }
   return problems;
 }
 
@@ -56,6 +64,8 @@ VaDiscovery::VaDiscovery(const DiscoveryOptions& options) : options_(options) {}
 void VaDiscovery::Reset() {
   groups_.clear();
   candidates_.clear();
+  sweep_buffers_.clear();
+  sweep_candidates_ = 0;
 }
 
 void VaDiscovery::RlsUpdate(Hypothesis& h, const Vec2& agent_m, double range_m) const {
@@ -258,6 +268,49 @@ std::vector<DiscoveredVa> VaDiscovery::Promote(int step, int anchor_index) {
   return promoted;
 }
 
+bool VaDiscovery::AddCandidate(int step, int anchor_index, const std::array<Vec2, 2>& starts,
+                               std::vector<DiscoverySample> samples, std::span<const Vec2> known_vas_m) {
+  Candidate candidate;
+  candidate.anchor_index = anchor_index;
+  candidate.created_step = step;
+  candidate.last_support_step = step;
+  int fitting = 0;
+  bool duplicate = false;
+  for (std::size_t k = 0; k < 2; ++k) {
+    Hypothesis& h = candidate.hypotheses[k];
+    h.position_m = starts[k];
+    h.covariance_m2 = Eigen::Matrix2d::Identity() * options_.rls_initial_sigma_m * options_.rls_initial_sigma_m;
+    double sum_m2 = 0.0;
+    for (const auto& s : samples) {
+      const double r = s.range_m - (h.position_m - s.agent_m).norm();
+      sum_m2 += r * r;
+    }
+    h.squared_residual_m2 = sum_m2;
+    const double rms_m = std::sqrt(sum_m2 / static_cast<double>(samples.size()));
+    h.alive = std::isfinite(rms_m) && rms_m <= options_.max_fit_rms_m;
+    // The ranges refine the hypothesis from its start (Lafer Sec. 4.2.1).
+    if (h.alive) {
+      for (const auto& s : samples) RlsUpdate(h, s.agent_m, s.range_m);
+    }
+    // A hypothesis on top of a known VA or of another candidate means the ranges are that
+    // feature's (e.g. while the VA filter excludes it): its mirror is no new VA either.
+    for (const auto& other : candidates_) {
+      if (other.anchor_index != anchor_index) continue;
+      for (const auto& oh : other.hypotheses) {
+        if (oh.alive && (oh.position_m - h.position_m).norm() < options_.duplicate_radius_m) duplicate = true;
+      }
+    }
+    for (const auto& va_m : known_vas_m) {
+      if ((va_m - h.position_m).norm() < options_.duplicate_radius_m) duplicate = true;
+    }
+    if (h.alive) ++fitting;
+  }
+  if (fitting == 0 || duplicate) return false;
+  candidate.samples = std::move(samples);
+  candidates_.push_back(std::move(candidate));
+  return true;
+}
+
 void VaDiscovery::UpdateGroups(int step, int anchor_index, const Vec2& agent_m,
                                std::span<const core::RangeMeasurement> ranges, const std::vector<bool>& used,
                                std::span<const Vec2> known_vas_m) {
@@ -324,46 +377,87 @@ void VaDiscovery::UpdateGroups(int step, int anchor_index, const Vec2& agent_m,
     remove[g] = true;  // used up, whether or not it gives a candidate
     const auto pair = estimation::RangeBancroft(positions, ranges_m);
     if (!pair) continue;
-    Candidate candidate;
-    candidate.anchor_index = anchor_index;
-    candidate.created_step = step;
-    candidate.last_support_step = step;
-    candidate.samples = group.samples;
-    int fitting = 0;
-    bool duplicate = false;
-    for (std::size_t k = 0; k < 2; ++k) {
-      Hypothesis& h = candidate.hypotheses[k];
-      h.position_m = pair->positions_m[k];
-      h.covariance_m2 = Eigen::Matrix2d::Identity() * options_.rls_initial_sigma_m * options_.rls_initial_sigma_m;
-      double sum_m2 = 0.0;
-      for (const auto& s : group.samples) {
-        const double r = s.range_m - (h.position_m - s.agent_m).norm();
-        sum_m2 += r * r;
-      }
-      h.squared_residual_m2 = sum_m2;
-      const double rms_m = std::sqrt(sum_m2 / static_cast<double>(group.samples.size()));
-      h.alive = std::isfinite(rms_m) && rms_m <= options_.max_fit_rms_m;
-      // The group's ranges refine the hypothesis from its Bancroft start (Lafer Sec. 4.2.1).
-      if (h.alive) {
-        for (const auto& s : group.samples) RlsUpdate(h, s.agent_m, s.range_m);
-      }
-      // A hypothesis on top of a known VA or of another candidate means the group is that
-      // feature's ranges (e.g. while the VA filter excludes it): its mirror is no new VA either.
-      for (const auto& other : candidates_) {
-        if (other.anchor_index != anchor_index) continue;
-        for (const auto& oh : other.hypotheses) {
-          if (oh.alive && (oh.position_m - h.position_m).norm() < options_.duplicate_radius_m) duplicate = true;
-        }
-      }
-      for (const auto& va_m : known_vas_m) {
-        if ((va_m - h.position_m).norm() < options_.duplicate_radius_m) duplicate = true;
-      }
-      if (h.alive) ++fitting;
-    }
-    if (fitting > 0 && !duplicate) candidates_.push_back(std::move(candidate));
+    const std::array<Vec2, 2> starts = {pair->positions_m[0], pair->positions_m[1]};
+    AddCandidate(step, anchor_index, starts, group.samples, known_vas_m);
   }
   for (std::size_t g = groups_.size(); g-- > 0;) {
     if (g < remove.size() && remove[g]) groups_.erase(groups_.begin() + static_cast<std::ptrdiff_t>(g));
+  }
+}
+
+void VaDiscovery::BufferScan(int step, int anchor_index, const Vec2& agent_m,
+                             std::span<const core::RangeMeasurement> ranges, const std::vector<bool>& used) {
+  if (sweep_buffers_.size() <= static_cast<std::size_t>(anchor_index)) {
+    sweep_buffers_.resize(static_cast<std::size_t>(anchor_index) + 1);
+  }
+  auto& buffer = sweep_buffers_[static_cast<std::size_t>(anchor_index)];
+  std::erase_if(buffer, [&](const SweepStep& b) { return step - b.step >= options_.sweep_window_steps; });
+  // The ranges no candidate took, sorted (the consensus search looks them up by value).
+  std::vector<core::RangeMeasurement> free;
+  for (std::size_t j = 0; j < ranges.size(); ++j) {
+    if (!used[j]) free.push_back(ranges[j]);
+  }
+  std::sort(free.begin(), free.end(),
+            [](const core::RangeMeasurement& a, const core::RangeMeasurement& b) { return a.range_m < b.range_m; });
+  SweepStep entry;
+  entry.step = step;
+  entry.scan.position_m = agent_m;
+  for (const auto& z : free) {
+    entry.scan.ranges_m.push_back(z.range_m);
+    entry.amplitudes.push_back(z.amplitude);
+  }
+  buffer.push_back(std::move(entry));
+}
+
+void VaDiscovery::Sweep(int step, int anchor_index, std::span<const Vec2> known_vas_m) {
+  auto& buffer = sweep_buffers_[static_cast<std::size_t>(anchor_index)];
+  const std::size_t n = buffer.size();
+  double span_m = 0.0;
+  for (const auto& b : buffer) span_m = std::max(span_m, (b.scan.position_m - buffer.front().scan.position_m).norm());
+  if (n < 3 || span_m < options_.sweep_min_baseline_m) return;
+  estimation::RangeConsensusOptions search;
+  search.gate_m = options_.sweep_gate_m;
+  search.min_support = static_cast<std::size_t>(
+      std::max<double>(std::ceil(options_.sweep_min_support * static_cast<double>(n)), options_.min_measurements));
+  search.min_pair_distance_m = 0.5 * options_.sweep_min_baseline_m;
+  search.exclusion_radius_m = options_.duplicate_radius_m;
+  // Points already explained (an active VA of this anchor or a live candidate hypothesis) are not
+  // proposed again.
+  std::vector<Vec2> taken_m(known_vas_m.begin(), known_vas_m.end());
+  for (const auto& c : candidates_) {
+    if (c.anchor_index != anchor_index) continue;
+    for (const auto& h : c.hypotheses) {
+      if (h.alive) taken_m.push_back(h.position_m);
+    }
+  }
+  std::vector<estimation::RangeScan> scans;
+  scans.reserve(n);
+  for (const auto& b : buffer) scans.push_back(b.scan);
+  const auto found = estimation::FindRangeConsensus(scans, taken_m, search);
+  if (!found) return;
+  // The supporting ranges become the candidate's samples; both mirror points start a hypothesis
+  // after a batch fit over them.
+  std::vector<DiscoverySample> samples;
+  std::vector<Vec2> positions;
+  std::vector<double> ranges_m;
+  for (const auto& [k, j] : found->support) {
+    const SweepStep& b = buffer[k];
+    samples.push_back({b.scan.position_m, b.scan.ranges_m[j], b.amplitudes[j]});
+    positions.push_back(b.scan.position_m);
+    ranges_m.push_back(b.scan.ranges_m[j]);
+  }
+  std::array<Vec2, 2> starts = {found->position_m, found->mirror_m};
+  for (auto& start : starts) {
+    if (const auto fit = estimation::FitPointToRanges(positions, ranges_m, start)) start = fit->position_m;
+  }
+  if (AddCandidate(step, anchor_index, starts, std::move(samples), known_vas_m)) ++sweep_candidates_;
+  // The supporting ranges are spent whether or not they gave a candidate (a duplicate, or no
+  // hypothesis within max_fit_rms_m): otherwise the same point would win every sweep and hide
+  // the next one.
+  for (auto it = found->support.rbegin(); it != found->support.rend(); ++it) {
+    SweepStep& b = buffer[it->first];
+    b.scan.ranges_m.erase(b.scan.ranges_m.begin() + static_cast<std::ptrdiff_t>(it->second));
+    b.amplitudes.erase(b.amplitudes.begin() + static_cast<std::ptrdiff_t>(it->second));
   }
 }
 
@@ -378,6 +472,10 @@ std::vector<DiscoveredVa> VaDiscovery::Process(int step, int anchor_index, const
   const std::vector<bool> used = UpdateCandidates(step, anchor_index, agent_m, unassociated, cutoff_m);
   auto promoted = Promote(step, anchor_index);
   UpdateGroups(step, anchor_index, agent_m, unassociated, used, known_vas_m);
+  if (options_.sweep) {
+    BufferScan(step, anchor_index, agent_m, unassociated, used);
+    if (step % options_.sweep_every_steps == 0) Sweep(step, anchor_index, known_vas_m);
+  }
   return promoted;
 }
 
