@@ -129,6 +129,18 @@ methods::slam::TrackRecoveryOptions ReadRecovery(YamlMap m) {
   return o;
 }
 
+methods::slam::SweepOptions ReadSweep(YamlMap m) {
+  methods::slam::SweepOptions o;
+  o.enabled = m.Boolean("enabled", o.enabled);
+  o.window_steps = m.Integer("window_steps", o.window_steps, 3, 100000);
+  o.every_steps = m.Integer("every_steps", o.every_steps, 1, 100000);
+  o.min_baseline_m = m.NumberInRange("min_baseline_m", o.min_baseline_m, 1e-9, kHuge, "m");
+  o.gate_m = m.NumberInRange("gate_m", o.gate_m, 1e-9, kHuge, "m");
+  o.min_support_fraction = m.NumberInRange("min_support_fraction", o.min_support_fraction, 1e-9, 1.0, "");
+  m.RejectUnknownKeys();
+  return o;
+}
+
 methods::slam::DiscoveryOptions ReadDiscovery(YamlMap m) {
   methods::slam::DiscoveryOptions o;
   o.enabled = m.Boolean("enabled", o.enabled);
@@ -153,12 +165,7 @@ methods::slam::DiscoveryOptions ReadDiscovery(YamlMap m) {
       m.NumberInRange("verify_min_inlier_fraction", o.verify_min_inlier_fraction, 1e-9, 1.0, "");
   o.verify_mirror_ratio = m.NumberInRange("verify_mirror_ratio", o.verify_mirror_ratio, 1.0, kHuge, "");
   o.verify_max_sigma_m = m.NumberInRange("verify_max_sigma_m", o.verify_max_sigma_m, 1e-9, kHuge, "m");
-  o.sweep = m.Boolean("sweep", o.sweep);
-  o.sweep_window_steps = m.Integer("sweep_window_steps", o.sweep_window_steps, 3, 100000);
-  o.sweep_every_steps = m.Integer("sweep_every_steps", o.sweep_every_steps, 1, 100000);
-  o.sweep_min_baseline_m = m.NumberInRange("sweep_min_baseline_m", o.sweep_min_baseline_m, 1e-9, kHuge, "m");
-  o.sweep_gate_m = m.NumberInRange("sweep_gate_m", o.sweep_gate_m, 1e-9, kHuge, "m");
-  o.sweep_min_support = m.NumberInRange("sweep_min_support", o.sweep_min_support, 1e-9, 1.0, "");
+  o.sweep = ReadSweep(m.OptionalMap("sweep"));
   m.RejectUnknownKeys();
   Check(o, m);
   return o;

@@ -239,7 +239,7 @@ TEST(LoadScenario, ReadsTheSlamExamplesWithTheValuesTheyState) {
   EXPECT_EQ(o.discovery.min_measurements, 10);
   EXPECT_EQ(o.discovery.resolve_misses, 3);
   EXPECT_TRUE(o.discovery.verify);
-  EXPECT_TRUE(o.discovery.sweep);
+  EXPECT_TRUE(o.discovery.sweep.enabled);
 
   // The known-VA example extends it: its own keys, the rest inherited.
   EXPECT_EQ(known.method, "slam");
@@ -413,23 +413,24 @@ TEST_F(ScenarioFiles, NamesABadMotionKeyOfEitherTrackerWithItsPath) {
 TEST_F(ScenarioFiles, ReadsTheSweepKeys) {
   // Every value differs from its default, so each key must have been read.
   const std::string path = Write("sweep.yaml", "extends: " + Example("seminar_room_slam.yaml") +
-                                                   "\nslam:\n  discovery:\n    sweep: false\n"
-                                                   "    sweep_window_steps: 40\n    sweep_every_steps: 10\n"
-                                                   "    sweep_min_baseline_m: 1.5\n    sweep_gate_m: 0.03\n"
-                                                   "    sweep_min_support: 0.7\n");
-  const auto& d = LoadScenario(path).mint.slam.discovery;
-  EXPECT_FALSE(d.sweep);
-  EXPECT_EQ(d.sweep_window_steps, 40);
-  EXPECT_EQ(d.sweep_every_steps, 10);
-  EXPECT_DOUBLE_EQ(d.sweep_min_baseline_m, 1.5);
-  EXPECT_DOUBLE_EQ(d.sweep_gate_m, 0.03);
-  EXPECT_DOUBLE_EQ(d.sweep_min_support, 0.7);
+                                                   "\nslam:\n  discovery:\n    sweep:\n      enabled: false\n"
+                                                   "      window_steps: 40\n      every_steps: 10\n"
+                                                   "      min_baseline_m: 1.5\n      gate_m: 0.03\n"
+                                                   "      min_support_fraction: 0.7\n");
+  const auto& sweep = LoadScenario(path).mint.slam.discovery.sweep;
+  EXPECT_FALSE(sweep.enabled);
+  EXPECT_EQ(sweep.window_steps, 40);
+  EXPECT_EQ(sweep.every_steps, 10);
+  EXPECT_DOUBLE_EQ(sweep.min_baseline_m, 1.5);
+  EXPECT_DOUBLE_EQ(sweep.gate_m, 0.03);
+  EXPECT_DOUBLE_EQ(sweep.min_support_fraction, 0.7);
 }
 
 TEST_F(ScenarioFiles, NamesABadSweepKeyWithItsPathAndLine) {
-  const std::string path = Write("sweep_bad.yaml", "extends: " + Example("seminar_room_slam.yaml") +
-                                                       "\nslam:\n  discovery:\n    sweep_min_support: 1.5\n");
-  ExpectError(ErrorOf(path), path, 4, {"slam.discovery.sweep_min_support", "out of range"});
+  const std::string path =
+      Write("sweep_bad.yaml", "extends: " + Example("seminar_room_slam.yaml") +
+                                  "\nslam:\n  discovery:\n    sweep:\n      min_support_fraction: 1.5\n");
+  ExpectError(ErrorOf(path), path, 5, {"slam.discovery.sweep.min_support_fraction", "out of range"});
 }
 
 TEST_F(ScenarioFiles, NamesAZeroLengthWall) {

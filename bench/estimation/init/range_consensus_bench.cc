@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: MIT
 // One consensus search of the VA discovery's sweep (stage D'): 60 scans of a straight 3 m walk,
-// each with the range of a far point (missed at every fourth scan, not at the proposing ones) among a Poisson number of
-// clutter ranges uniform over 15 m; 60 % support needed. The cost grows with the square of the
-// ranges per scan (the proposals are the range pairs of three pairs of scans). The seminar-room
-// sweep sees about 15-20 unexplained ranges per anchor and step and runs every 5 steps.
+// each with the range of a far point (missed at every fourth scan, not at the proposing ones)
+// among a Poisson number of clutter ranges uniform over 15 m; 60 % support needed. The proposals
+// grow with the square of the ranges per scan (the range pairs of three pairs of scans), and each
+// is dropped later when more clutter supports it. The seminar-room sweep sees about 15-20
+// unexplained ranges per anchor and step and runs every 5 steps per anchor.
 #include <algorithm>
 #include <vector>
 

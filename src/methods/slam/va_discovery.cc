@@ -8,7 +8,6 @@
 #include <Eigen/Eigenvalues>
 
 #include "mirage/estimation/init/range_bancroft.h"
-#include "mirage/estimation/init/range_consensus.h"
 #include "mirage/estimation/init/range_point_fit.h"
 #include "mirage/estimation/range_association.h"
 
@@ -49,22 +48,17 @@ std::vector<std::string> Validate(const DiscoveryOptions& o) {
   if (!(o.duplicate_radius_m >= 0.0) || !std::isfinite(o.duplicate_radius_m)) {
     problems.push_back("duplicate_radius_m must be >= 0 m");
   }
-  at_least(o.sweep_window_steps, 3, "sweep_window_steps");
-  at_least(o.sweep_every_steps, 1, "sweep_every_steps");
-  positive(o.sweep_min_baseline_m, "sweep_min_baseline_m");
-  positive(o.sweep_gate_m, "sweep_gate_m");
-  if (!(o.sweep_min_support > 0.0 && o.sweep_min_support <= 1.0)) {
-    problems.push_back("sweep_min_support must be in (0, 1]");
-  }
+  for (auto& problem : Validate(o.sweep)) problems.push_back(std::move(problem));
   return problems;
 }
 
-VaDiscovery::VaDiscovery(const DiscoveryOptions& options) : options_(options) {}
+VaDiscovery::VaDiscovery(const DiscoveryOptions& options)
+    : options_(options), sweep_(options.sweep, options.min_measurements, options.duplicate_radius_m) {}
 
 void VaDiscovery::Reset() {
   groups_.clear();
   candidates_.clear();
-  sweep_buffers_.clear();
+  sweep_.Reset();
   sweep_candidates_ = 0;
 }
 
@@ -385,82 +379,6 @@ void VaDiscovery::UpdateGroups(int step, int anchor_index, const Vec2& agent_m,
   }
 }
 
-void VaDiscovery::BufferScan(int step, int anchor_index, const Vec2& agent_m,
-                             std::span<const core::RangeMeasurement> ranges, const std::vector<bool>& used) {
-  if (sweep_buffers_.size() <= static_cast<std::size_t>(anchor_index)) {
-    sweep_buffers_.resize(static_cast<std::size_t>(anchor_index) + 1);
-  }
-  auto& buffer = sweep_buffers_[static_cast<std::size_t>(anchor_index)];
-  std::erase_if(buffer, [&](const SweepStep& b) { return step - b.step >= options_.sweep_window_steps; });
-  // The ranges no candidate took, sorted (the consensus search looks them up by value).
-  std::vector<core::RangeMeasurement> free;
-  for (std::size_t j = 0; j < ranges.size(); ++j) {
-    if (!used[j]) free.push_back(ranges[j]);
-  }
-  std::sort(free.begin(), free.end(),
-            [](const core::RangeMeasurement& a, const core::RangeMeasurement& b) { return a.range_m < b.range_m; });
-  SweepStep entry;
-  entry.step = step;
-  entry.scan.position_m = agent_m;
-  for (const auto& z : free) {
-    entry.scan.ranges_m.push_back(z.range_m);
-    entry.amplitudes.push_back(z.amplitude);
-  }
-  buffer.push_back(std::move(entry));
-}
-
-void VaDiscovery::Sweep(int step, int anchor_index, std::span<const Vec2> known_vas_m) {
-  auto& buffer = sweep_buffers_[static_cast<std::size_t>(anchor_index)];
-  const std::size_t n = buffer.size();
-  double span_m = 0.0;
-  for (const auto& b : buffer) span_m = std::max(span_m, (b.scan.position_m - buffer.front().scan.position_m).norm());
-  if (n < 3 || span_m < options_.sweep_min_baseline_m) return;
-  estimation::RangeConsensusOptions search;
-  search.gate_m = options_.sweep_gate_m;
-  search.min_support = static_cast<std::size_t>(
-      std::max<double>(std::ceil(options_.sweep_min_support * static_cast<double>(n)), options_.min_measurements));
-  search.min_pair_distance_m = 0.5 * options_.sweep_min_baseline_m;
-  search.exclusion_radius_m = options_.duplicate_radius_m;
-  // Points already explained (an active VA of this anchor or a live candidate hypothesis) are not
-  // proposed again.
-  std::vector<Vec2> taken_m(known_vas_m.begin(), known_vas_m.end());
-  for (const auto& c : candidates_) {
-    if (c.anchor_index != anchor_index) continue;
-    for (const auto& h : c.hypotheses) {
-      if (h.alive) taken_m.push_back(h.position_m);
-    }
-  }
-  std::vector<estimation::RangeScan> scans;
-  scans.reserve(n);
-  for (const auto& b : buffer) scans.push_back(b.scan);
-  const auto found = estimation::FindRangeConsensus(scans, taken_m, search);
-  if (!found) return;
-  // The supporting ranges become the candidate's samples; both mirror points start a hypothesis
-  // after a batch fit over them.
-  std::vector<DiscoverySample> samples;
-  std::vector<Vec2> positions;
-  std::vector<double> ranges_m;
-  for (const auto& [k, j] : found->support) {
-    const SweepStep& b = buffer[k];
-    samples.push_back({b.scan.position_m, b.scan.ranges_m[j], b.amplitudes[j]});
-    positions.push_back(b.scan.position_m);
-    ranges_m.push_back(b.scan.ranges_m[j]);
-  }
-  std::array<Vec2, 2> starts = {found->position_m, found->mirror_m};
-  for (auto& start : starts) {
-    if (const auto fit = estimation::FitPointToRanges(positions, ranges_m, start)) start = fit->position_m;
-  }
-  if (AddCandidate(step, anchor_index, starts, std::move(samples), known_vas_m)) ++sweep_candidates_;
-  // The supporting ranges are spent whether or not they gave a candidate (a duplicate, or no
-  // hypothesis within max_fit_rms_m): otherwise the same point would win every sweep and hide
-  // the next one.
-  for (auto it = found->support.rbegin(); it != found->support.rend(); ++it) {
-    SweepStep& b = buffer[it->first];
-    b.scan.ranges_m.erase(b.scan.ranges_m.begin() + static_cast<std::ptrdiff_t>(it->second));
-    b.amplitudes.erase(b.amplitudes.begin() + static_cast<std::ptrdiff_t>(it->second));
-  }
-}
-
 std::vector<DiscoveredVa> VaDiscovery::Process(int step, int anchor_index, const Vec2& agent_m,
                                                const Eigen::Matrix2d& agent_covariance_m2,
                                                std::span<const core::RangeMeasurement> unassociated,
@@ -472,9 +390,18 @@ std::vector<DiscoveredVa> VaDiscovery::Process(int step, int anchor_index, const
   const std::vector<bool> used = UpdateCandidates(step, anchor_index, agent_m, unassociated, cutoff_m);
   auto promoted = Promote(step, anchor_index);
   UpdateGroups(step, anchor_index, agent_m, unassociated, used, known_vas_m);
-  if (options_.sweep) {
-    BufferScan(step, anchor_index, agent_m, unassociated, used);
-    if (step % options_.sweep_every_steps == 0) Sweep(step, anchor_index, known_vas_m);
+  // Stage D': points already explained (an active VA of this anchor or a live candidate
+  // hypothesis) are not searched for.
+  sweep_.Buffer(step, anchor_index, agent_m, unassociated, used);
+  std::vector<Vec2> taken_m(known_vas_m.begin(), known_vas_m.end());
+  for (const auto& c : candidates_) {
+    if (c.anchor_index != anchor_index) continue;
+    for (const auto& h : c.hypotheses) {
+      if (h.alive) taken_m.push_back(h.position_m);
+    }
+  }
+  if (auto find = sweep_.Search(step, anchor_index, taken_m)) {
+    if (AddCandidate(step, anchor_index, find->starts, std::move(find->samples), known_vas_m)) ++sweep_candidates_;
   }
   return promoted;
 }

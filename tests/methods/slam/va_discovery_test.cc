@@ -184,32 +184,30 @@ SweepOutcome RunStraightWalk(const DiscoveryOptions& options, bool with_va) {
 
 TEST(VaDiscovery, TheSweepFindsAFarVaThatTheGroupsLoseAtMissedSteps) {
   DiscoveryOptions groups_only;
-  groups_only.sweep = false;
+  groups_only.sweep.enabled = false;
   EXPECT_FALSE(RunStraightWalk(groups_only, true).candidate_of_va) << "the step-to-step groups found it after all";
   const SweepOutcome out = RunStraightWalk(DiscoveryOptions{}, true);
   EXPECT_TRUE(out.candidate_of_va);
   EXPECT_GE(out.sweep_candidates, 1);
 }
 
-TEST(VaDiscovery, TheSweepProposesNothingFromClutterAlone) {
+TEST(VaDiscovery, TheSweepMakesNoCandidateFromClutterAlone) {
   EXPECT_EQ(RunStraightWalk(DiscoveryOptions{}, false).sweep_candidates, 0);
 }
 
 TEST(VaDiscovery, ValidateNamesEachSweepOption) {
   const auto problem_with = [](auto change) {
     DiscoveryOptions options;
-    change(options);
+    change(options.sweep);
     const auto problems = Validate(options);
     return problems.size() == 1 ? problems.front() : std::string("(") + std::to_string(problems.size()) + " problems)";
   };
-  EXPECT_NE(problem_with([](DiscoveryOptions& o) { o.sweep_window_steps = 2; }).find("sweep_window_steps"),
+  EXPECT_NE(problem_with([](SweepOptions& o) { o.window_steps = 2; }).find("sweep.window_steps"), std::string::npos);
+  EXPECT_NE(problem_with([](SweepOptions& o) { o.every_steps = 0; }).find("sweep.every_steps"), std::string::npos);
+  EXPECT_NE(problem_with([](SweepOptions& o) { o.min_baseline_m = 0.0; }).find("sweep.min_baseline_m"),
             std::string::npos);
-  EXPECT_NE(problem_with([](DiscoveryOptions& o) { o.sweep_every_steps = 0; }).find("sweep_every_steps"),
-            std::string::npos);
-  EXPECT_NE(problem_with([](DiscoveryOptions& o) { o.sweep_min_baseline_m = 0.0; }).find("sweep_min_baseline_m"),
-            std::string::npos);
-  EXPECT_NE(problem_with([](DiscoveryOptions& o) { o.sweep_gate_m = -1.0; }).find("sweep_gate_m"), std::string::npos);
-  EXPECT_NE(problem_with([](DiscoveryOptions& o) { o.sweep_min_support = 1.5; }).find("sweep_min_support"),
+  EXPECT_NE(problem_with([](SweepOptions& o) { o.gate_m = -1.0; }).find("sweep.gate_m"), std::string::npos);
+  EXPECT_NE(problem_with([](SweepOptions& o) { o.min_support_fraction = 1.5; }).find("sweep.min_support_fraction"),
             std::string::npos);
 }
 

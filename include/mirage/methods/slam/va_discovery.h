@@ -14,7 +14,10 @@
 //      multipath promoted many wrong points);
 //   D. the remaining ranges extend groups of similar ranges from consecutive steps; a group long
 //      enough, and walked over a long enough baseline, gives a new candidate pair by the
-//      range-Bancroft algorithm (two mirror solutions).
+//      range-Bancroft algorithm (two mirror solutions);
+//   D'. (mirage) the sweep (methods/slam/va_sweep): the ranges no candidate took are buffered
+//      for 60 steps, and a consensus search over them gives a candidate pair for a far VA whose
+//      ranges the groups of D cannot chain.
 // The digest (slam_multipath_leitinger.md Sec. 2.9, 3.3) lists what the paper leaves open; the
 // choices made here are the options below, each with its reason.
 #pragma once
@@ -29,7 +32,8 @@
 
 #include "mirage/core/measurements.h"
 #include "mirage/core/types.h"
-#include "mirage/estimation/init/range_consensus.h"
+#include "mirage/methods/slam/discovery_sample.h"
+#include "mirage/methods/slam/va_sweep.h"
 
 namespace mirage::methods::slam {
 
@@ -109,43 +113,12 @@ struct DiscoveryOptions {
   /// existing candidate hypothesis or of an active VA of the same anchor (m), >= 0 [SUG merge
   /// radius, digest Sec. 2.10]: it would be the same feature found twice.
   double duplicate_radius_m = 0.2;
-  /// Stage D' (mirage; docs/methods/slam.md): a consensus search over the last
-  /// sweep_window_steps steps of the ranges no candidate took, for VAs whose ranges the
-  /// step-to-step groups cannot chain. A far, weak VA changes its range by up to a step length
-  /// per step and is extracted at 3-4 steps in 5, so its groups break at the 7 cm gate, and a
-  /// wider gate chains clutter in (seminar room: A2's bottom-wall VA entered the map in 3 of 25
-  /// runs of trajectory 2, in 20 with the sweep). Pairs of ranges from steps far apart propose the
-  /// two intersections of their circles (estimation/init/range_consensus); the best-supported
-  /// point starts a candidate pair like a group's, which still needs the batch check (verify).
-  bool sweep = true;
-  /// Steps of ranges the sweep searches (>= 3).
-  int sweep_window_steps = 60;
-  /// The sweep runs every this many steps per anchor (>= 1). Each run costs about 130 us per
-  /// anchor at 15 unexplained ranges per step (BM_RangeConsensus); 10 halves the sweep's cost for
-  /// p90 0-0.3 cm worse in the seminar room.
-  int sweep_every_steps = 5;
-  /// The buffered agent positions must span at least this distance (m), > 0: the two circles'
-  /// intersection is well conditioned only over a long baseline.
-  double sweep_min_baseline_m = 1.0;
-  /// A range supports a point if within this distance of its predicted range (m), > 0: range
-  /// noise (1-2 cm) plus the agent's error (about 2-3 cm). Gates of 3 and 5 cm, supports of 0.5
-  /// and 0.7 and windows of 40 and 80 steps gave p90 within 0.5 cm of these defaults (seeds 1, 3).
-  double sweep_gate_m = 0.04;
-  /// Smallest fraction of the buffered steps that must support a point, in (0, 1]. Diffuse
-  /// multipath and clutter put about one range per metre of range window: a wrong point collects
-  /// 10 % of the steps within a 4 cm gate, a visible VA extracted at 80 % of the steps 80 %.
-  double sweep_min_support = 0.6;
+  /// Stage D' (mirage): the sweep for far VAs (methods/slam/va_sweep).
+  SweepOptions sweep;
 };
 
 /// Problems with the options, empty if valid.
 std::vector<std::string> Validate(const DiscoveryOptions& options);
-
-/// One range used by a candidate, with the agent position it was measured from.
-struct DiscoverySample {
-  Vec2 agent_m = Vec2::Zero();
-  double range_m = 0.0;
-  std::optional<double> amplitude;
-};
 
 /// One mirror hypothesis of a candidate, tracked by RLS.
 struct Hypothesis {
@@ -162,7 +135,7 @@ struct Candidate {
   std::array<Hypothesis, 2> hypotheses;
   int created_step = 0;
   int last_support_step = 0;
-  std::vector<DiscoverySample> samples;  ///< the group's ranges and every range associated since
+  std::vector<DiscoverySample> samples;  ///< the group's (or sweep's) ranges and every range since
 };
 
 /// A resolved candidate, ready to enter the state.
@@ -192,8 +165,10 @@ class VaDiscovery {
   [[nodiscard]] int group_count() const { return static_cast<int>(groups_.size()); }
   /// Candidates created by the sweep (stage D') since the last Reset.
   [[nodiscard]] int sweep_candidates() const { return sweep_candidates_; }
+  /// The sweep's buffers (stage D').
+  [[nodiscard]] const VaSweep& sweep() const { return sweep_; }
 
-  /// Forgets all groups and candidates.
+  /// Forgets all groups, candidates and the sweep's buffers.
   void Reset();
 
  private:
@@ -217,17 +192,6 @@ class VaDiscovery {
   // Stage D.
   void UpdateGroups(int step, int anchor_index, const Vec2& agent_m, std::span<const core::RangeMeasurement> ranges,
                     const std::vector<bool>& used, std::span<const Vec2> known_vas_m);
-  // Stage D'.
-  struct SweepStep {
-    int step = 0;
-    estimation::RangeScan scan;                     // agent position, ranges sorted
-    std::vector<std::optional<double>> amplitudes;  // of scan.ranges_m, in the same order
-  };
-  // Keeps the ranges no candidate took (used[j]) with the agent position for the sweep.
-  void BufferScan(int step, int anchor_index, const Vec2& agent_m, std::span<const core::RangeMeasurement> ranges,
-                  const std::vector<bool>& used);
-  // Searches an anchor's buffer for one new candidate.
-  void Sweep(int step, int anchor_index, std::span<const Vec2> known_vas_m);
   // A candidate pair from two hypotheses and its samples, unless it duplicates a known VA or a
   // candidate (stages D and D').
   bool AddCandidate(int step, int anchor_index, const std::array<Vec2, 2>& starts,
@@ -238,7 +202,7 @@ class VaDiscovery {
   DiscoveryOptions options_;
   std::vector<Group> groups_;
   std::vector<Candidate> candidates_;
-  std::vector<std::vector<SweepStep>> sweep_buffers_;  // per anchor index, oldest first
+  VaSweep sweep_;
   int sweep_candidates_ = 0;
 };
 
