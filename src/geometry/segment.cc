@@ -27,6 +27,20 @@ bool SegmentHitsCircle(const Vec2& p, const Vec2& q, const Vec2& center_m, doubl
   return DistanceToSegment(center_m, p, q) < radius_m;
 }
 
+std::optional<std::array<Vec2, 2>> IntersectCircles(const Vec2& c1, double r1, const Vec2& c2, double r2) {
+  const Vec2 d = c2 - c1;
+  const double l = d.norm();
+  if (!std::isfinite(l) || !std::isfinite(r1) || !std::isfinite(r2)) return std::nullopt;
+  if (l < 1e-9 || r1 + r2 < l || std::abs(r1 - r2) > l) return std::nullopt;
+  const Vec2 u = d / l;
+  // Distance from c1 along u to the chord, and the half chord.
+  const double a = (l * l + r1 * r1 - r2 * r2) / (2.0 * l);
+  const double h = std::sqrt(std::max(0.0, r1 * r1 - a * a));
+  const Vec2 mid = c1 + a * u;
+  const Vec2 n(-u.y(), u.x());
+  return std::array<Vec2, 2>{mid + h * n, mid - h * n};
+}
+
 Vec2 MirrorPoint(const Vec2& x, const Vec2& a, const Vec2& b) {
   const Vec2 d = (b - a).normalized();
   const Vec2 n(-d.y(), d.x());

@@ -94,6 +94,28 @@ TEST(CrossSegments, FindsACrossingOfNearlyParallelSegments) {
 // SegmentHitsCircle
 // ---------------------------------------------------------------------------------------------
 
+TEST(IntersectCircles, FindsBothPointsMirroredAtTheCentreLine) {
+  // Circles of radius 5 around (0, 0) and (8, 0) meet at (4, +-3).
+  const auto points = IntersectCircles(Vec2(0.0, 0.0), 5.0, Vec2(8.0, 0.0), 5.0);
+  ASSERT_TRUE(points);
+  EXPECT_LT(((*points)[0] - Vec2(4.0, 3.0)).norm(), 1e-12);
+  EXPECT_LT(((*points)[1] - Vec2(4.0, -3.0)).norm(), 1e-12);
+}
+
+TEST(IntersectCircles, GivesOnePointTwiceWhereTheCirclesTouch) {
+  const auto points = IntersectCircles(Vec2(0.0, 0.0), 3.0, Vec2(5.0, 0.0), 2.0);
+  ASSERT_TRUE(points);
+  EXPECT_LT(((*points)[0] - Vec2(3.0, 0.0)).norm(), 1e-9);
+  EXPECT_LT(((*points)[1] - Vec2(3.0, 0.0)).norm(), 1e-9);
+}
+
+TEST(IntersectCircles, ReportsCirclesThatDoNotMeet) {
+  EXPECT_FALSE(IntersectCircles(Vec2(0.0, 0.0), 1.0, Vec2(5.0, 0.0), 1.0));    // apart
+  EXPECT_FALSE(IntersectCircles(Vec2(0.0, 0.0), 5.0, Vec2(1.0, 0.0), 1.0));    // one inside the other
+  EXPECT_FALSE(IntersectCircles(Vec2(0.0, 0.0), 5.0, Vec2(0.0, 0.0), 5.0));    // same centre
+  EXPECT_FALSE(IntersectCircles(Vec2(0.0, 0.0), std::nan(""), Vec2(1.0, 0.0), 1.0));  // not finite
+}
+
 TEST(SegmentHitsCircle, HitsADiscWhoseCentreIsCloserThanTheRadius) {
   // Centre (2,1) is at distance 1 from the segment (0,0)->(4,0).
   EXPECT_TRUE(SegmentHitsCircle(Vec2(0, 0), Vec2(4, 0), Vec2(2, 1), 1.5));

@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: MIT
-// 2-D segment primitives: intersection of two segments, of a segment and a circle, mirroring
-// a point at a line. Tolerances are explicit parameters of the callers that need them.
+// 2-D segment primitives: intersection of two segments, of a segment and a circle, of two
+// circles, mirroring a point at a line. Tolerances are explicit parameters of the callers that need them.
 #pragma once
 
+#include <array>
 #include <optional>
 
 #include "mirage/core/types.h"
@@ -21,6 +22,11 @@ std::optional<SegmentCrossing> CrossSegments(const Vec2& p, const Vec2& q, const
 
 /// True if segment p->q passes through the open disc of the given centre and radius (m).
 bool SegmentHitsCircle(const Vec2& p, const Vec2& q, const Vec2& center_m, double radius_m);
+
+/// The two intersections of the circles (c1, r1) and (c2, r2), mirror images of each other at
+/// the line c1-c2 (equal where the circles touch); std::nullopt if they do not meet, the centres
+/// coincide (within 1 nm) or the input is not finite.
+std::optional<std::array<Vec2, 2>> IntersectCircles(const Vec2& c1, double r1, const Vec2& c2, double r2);
 
 /// Mirror image of point x at the infinite line through a and b (a != b).
 Vec2 MirrorPoint(const Vec2& x, const Vec2& a, const Vec2& b);

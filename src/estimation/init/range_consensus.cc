@@ -2,30 +2,15 @@
 #include "mirage/estimation/init/range_consensus.h"
 
 #include <algorithm>
-#include <array>
 #include <cassert>
 #include <cmath>
 
 #include "mirage/estimation/init/range_point_fit.h"
+#include "mirage/geometry/segment.h"
 
 namespace mirage::estimation {
 
 namespace {
-
-// The two intersections of the circles |q - a| = ra and |q - b| = rb; none if they do not meet
-// or the input is not finite.
-std::optional<std::array<Vec2, 2>> CircleIntersections(const Vec2& a, double ra, const Vec2& b, double rb) {
-  const Vec2 ab = b - a;
-  const double d = ab.norm();
-  if (!std::isfinite(d) || !std::isfinite(ra) || !std::isfinite(rb)) return std::nullopt;
-  if (d < 1e-9 || std::abs(ra - rb) > d || ra + rb < d) return std::nullopt;
-  const double along = (ra * ra - rb * rb + d * d) / (2.0 * d);
-  const double across = std::sqrt(std::max(ra * ra - along * along, 0.0));
-  const Vec2 u = ab / d;
-  const Vec2 foot = a + along * u;
-  const Vec2 normal(-u.y(), u.x());
-  return std::array<Vec2, 2>{foot + across * normal, foot - across * normal};
-}
 
 // Index of the range of a sorted scan nearest to predicted_m, if one is within gate_m (a NaN
 // prediction is within no gate).
@@ -112,7 +97,7 @@ std::optional<RangeConsensus> FindRangeConsensus(std::span<const RangeScan> scan
     if ((last.position_m - first.position_m).norm() < options.min_pair_distance_m) continue;
     for (const double ri_m : first.ranges_m) {
       for (const double rj_m : last.ranges_m) {
-        const auto points = CircleIntersections(first.position_m, ri_m, last.position_m, rj_m);
+        const auto points = geometry::IntersectCircles(first.position_m, ri_m, last.position_m, rj_m);
         if (!points) continue;
         for (const Vec2& q : *points) {
           if (Excluded(q, excluded_m, options.exclusion_radius_m)) continue;
@@ -149,10 +134,7 @@ std::optional<RangeConsensus> FindRangeConsensus(std::span<const RangeScan> scan
     }
     if (supporting.size() < options.min_support || Excluded(q, excluded_m, options.exclusion_radius_m)) continue;
     if (best && supporting.size() <= best->support.size()) continue;
-    // The mirror image about the line through the proposing scans.
-    const Vec2 u = (proposal.line_b_m - proposal.line_a_m).normalized();
-    const Vec2 d = q - proposal.line_a_m;
-    best = RangeConsensus{q, proposal.line_a_m + 2.0 * u * u.dot(d) - d, std::move(supporting)};
+    best = RangeConsensus{q, geometry::MirrorPoint(q, proposal.line_a_m, proposal.line_b_m), std::move(supporting)};
   }
   return best;
 }

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "mirage/geometry/segment.h"
+
 namespace mirage::methods::slam {
 namespace {
 // Two LOS circles that miss each other by less than this still give a candidate (m): range noise
@@ -63,7 +65,7 @@ std::vector<double> LosRanges(std::span<const core::AnchorRanges> measurements, 
 
 // Intersections of the circles (c1, r1) and (c2, r2); circles that miss by up to kCircleSlackM
 // give the point on the centre line between them.
-void IntersectCircles(const Vec2& c1, double r1, const Vec2& c2, double r2, std::vector<Vec2>& out) {
+void LooseCircleIntersections(const Vec2& c1, double r1, const Vec2& c2, double r2, std::vector<Vec2>& out) {
   const Vec2 d = c2 - c1;
   const double l = d.norm();
   if (l < 1e-9) return;
@@ -80,13 +82,10 @@ void IntersectCircles(const Vec2& c1, double r1, const Vec2& c2, double r2, std:
     out.push_back(c1 + u * s);
     return;
   }
-  // Distance from c1 along u to the chord, and the half chord.
-  const double a = (l * l + r1 * r1 - r2 * r2) / (2.0 * l);
-  const double h = std::sqrt(std::max(0.0, r1 * r1 - a * a));
-  const Vec2 mid = c1 + a * u;
-  const Vec2 n(-u.y(), u.x());
-  out.push_back(mid + h * n);
-  if (h > 0.0) out.push_back(mid - h * n);
+  const auto points = geometry::IntersectCircles(c1, r1, c2, r2);
+  if (!points) return;
+  out.push_back((*points)[0]);
+  if ((*points)[1] != (*points)[0]) out.push_back((*points)[1]);  // touching circles: one point
 }
 
 }  // namespace
@@ -99,7 +98,9 @@ std::vector<Vec2> LosCandidates(std::span<const MapPoint> anchors, std::span<con
   for (std::size_t i = 0; i < anchors.size(); ++i) {
     for (std::size_t j = i + 1; j < anchors.size(); ++j) {
       for (const double a : radii_m[i]) {
-        for (const double b : radii_m[j]) IntersectCircles(anchors[i].position_m, a, anchors[j].position_m, b, out);
+        for (const double b : radii_m[j]) {
+          LooseCircleIntersections(anchors[i].position_m, a, anchors[j].position_m, b, out);
+        }
       }
     }
   }

@@ -390,18 +390,20 @@ std::vector<DiscoveredVa> VaDiscovery::Process(int step, int anchor_index, const
   const std::vector<bool> used = UpdateCandidates(step, anchor_index, agent_m, unassociated, cutoff_m);
   auto promoted = Promote(step, anchor_index);
   UpdateGroups(step, anchor_index, agent_m, unassociated, used, known_vas_m);
-  // Stage D': points already explained (an active VA of this anchor or a live candidate
+  // Stage D'. Points already explained (an active VA of this anchor or a live candidate
   // hypothesis) are not searched for.
   sweep_.Buffer(step, anchor_index, agent_m, unassociated, used);
-  std::vector<Vec2> taken_m(known_vas_m.begin(), known_vas_m.end());
-  for (const auto& c : candidates_) {
-    if (c.anchor_index != anchor_index) continue;
-    for (const auto& h : c.hypotheses) {
-      if (h.alive) taken_m.push_back(h.position_m);
+  if (sweep_.Due(step, anchor_index)) {
+    std::vector<Vec2> taken_m(known_vas_m.begin(), known_vas_m.end());
+    for (const auto& c : candidates_) {
+      if (c.anchor_index != anchor_index) continue;
+      for (const auto& h : c.hypotheses) {
+        if (h.alive) taken_m.push_back(h.position_m);
+      }
     }
-  }
-  if (auto find = sweep_.Search(step, anchor_index, taken_m)) {
-    if (AddCandidate(step, anchor_index, find->starts, std::move(find->samples), known_vas_m)) ++sweep_candidates_;
+    if (auto find = sweep_.Search(step, anchor_index, taken_m)) {
+      if (AddCandidate(step, anchor_index, find->starts, std::move(find->samples), known_vas_m)) ++sweep_candidates_;
+    }
   }
   return promoted;
 }

@@ -29,14 +29,14 @@ void VaSweep::Reset() { buffers_.clear(); }
 
 std::size_t VaSweep::buffered_steps(int anchor_index) const {
   const auto a = static_cast<std::size_t>(anchor_index);
-  return a < buffers_.size() ? buffers_[a].size() : 0;
+  return a < buffers_.size() ? buffers_[a].steps.size() : 0;
 }
 
 std::size_t VaSweep::buffered_ranges(int anchor_index) const {
   const auto a = static_cast<std::size_t>(anchor_index);
   std::size_t count = 0;
   if (a < buffers_.size()) {
-    for (const auto& b : buffers_[a]) count += b.scan.ranges_m.size();
+    for (const auto& scan : buffers_[a].scans) count += scan.ranges_m.size();
   }
   return count;
 }
@@ -46,8 +46,14 @@ void VaSweep::Buffer(int step, int anchor_index, const Vec2& agent_m, std::span<
   if (!options_.enabled || !agent_m.allFinite()) return;
   const auto anchor = static_cast<std::size_t>(anchor_index);
   if (buffers_.size() <= anchor) buffers_.resize(anchor + 1);
-  auto& buffer = buffers_[anchor];
-  std::erase_if(buffer, [&](const BufferedStep& b) { return step - b.step >= options_.window_steps; });
+  AnchorBuffer& buffer = buffers_[anchor];
+  // Steps older than the window leave from the front.
+  const auto old = static_cast<std::ptrdiff_t>(
+      std::find_if(buffer.steps.begin(), buffer.steps.end(), [&](int s) { return step - s < options_.window_steps; }) -
+      buffer.steps.begin());
+  buffer.steps.erase(buffer.steps.begin(), buffer.steps.begin() + old);
+  buffer.scans.erase(buffer.scans.begin(), buffer.scans.begin() + old);
+  buffer.amplitudes.erase(buffer.amplitudes.begin(), buffer.amplitudes.begin() + old);
   // The ranges no candidate took, sorted (the consensus search looks them up by value).
   std::vector<core::RangeMeasurement> free;
   for (std::size_t j = 0; j < ranges.size(); ++j) {
@@ -55,23 +61,29 @@ void VaSweep::Buffer(int step, int anchor_index, const Vec2& agent_m, std::span<
   }
   std::sort(free.begin(), free.end(),
             [](const core::RangeMeasurement& a, const core::RangeMeasurement& b) { return a.range_m < b.range_m; });
-  BufferedStep entry;
-  entry.step = step;
-  entry.scan.position_m = agent_m;
+  estimation::RangeScan scan;
+  scan.position_m = agent_m;
+  std::vector<std::optional<double>> amplitudes;
   for (const auto& z : free) {
-    entry.scan.ranges_m.push_back(z.range_m);
-    entry.amplitudes.push_back(z.amplitude);
+    scan.ranges_m.push_back(z.range_m);
+    amplitudes.push_back(z.amplitude);
   }
-  buffer.push_back(std::move(entry));
+  buffer.steps.push_back(step);
+  buffer.scans.push_back(std::move(scan));
+  buffer.amplitudes.push_back(std::move(amplitudes));
+}
+
+bool VaSweep::Due(int step, int anchor_index) const {
+  return options_.enabled && (step + anchor_index) % options_.every_steps == 0;
 }
 
 std::optional<SweepFind> VaSweep::Search(int step, int anchor_index, std::span<const Vec2> excluded_m) {
-  if (!options_.enabled || (step + anchor_index) % options_.every_steps != 0) return std::nullopt;
-  if (static_cast<std::size_t>(anchor_index) >= buffers_.size()) return std::nullopt;
-  auto& buffer = buffers_[static_cast<std::size_t>(anchor_index)];
-  const std::size_t n = buffer.size();
+  if (!Due(step, anchor_index) || static_cast<std::size_t>(anchor_index) >= buffers_.size()) return std::nullopt;
+  AnchorBuffer& buffer = buffers_[static_cast<std::size_t>(anchor_index)];
+  const std::size_t n = buffer.scans.size();
+  const Vec2 first_m = n > 0 ? buffer.scans.front().position_m : Vec2::Zero();
   double span_m = 0.0;
-  for (const auto& b : buffer) span_m = std::max(span_m, (b.scan.position_m - buffer.front().scan.position_m).norm());
+  for (const auto& scan : buffer.scans) span_m = std::max(span_m, (scan.position_m - first_m).norm());
   if (n < 3 || span_m < options_.min_baseline_m) return std::nullopt;
   estimation::RangeConsensusOptions search;
   search.gate_m = options_.gate_m;
@@ -81,19 +93,16 @@ std::optional<SweepFind> VaSweep::Search(int step, int anchor_index, std::span<c
       std::max<double>(std::ceil(options_.min_support_fraction * static_cast<double>(n)), min_measurements_));
   search.min_pair_distance_m = 0.5 * options_.min_baseline_m;
   search.exclusion_radius_m = exclusion_radius_m_;
-  std::vector<estimation::RangeScan> scans;
-  scans.reserve(n);
-  for (const auto& b : buffer) scans.push_back(b.scan);
-  const auto found = estimation::FindRangeConsensus(scans, excluded_m, search);
+  const auto found = estimation::FindRangeConsensus(buffer.scans, excluded_m, search);
   if (!found) return std::nullopt;
   SweepFind find;
   std::vector<Vec2> positions_m;
   std::vector<double> ranges_m;
   for (const auto& [k, j] : found->support) {
-    const BufferedStep& b = buffer[k];
-    find.samples.push_back({b.scan.position_m, b.scan.ranges_m[j], b.amplitudes[j]});
-    positions_m.push_back(b.scan.position_m);
-    ranges_m.push_back(b.scan.ranges_m[j]);
+    const estimation::RangeScan& scan = buffer.scans[k];
+    find.samples.push_back({scan.position_m, scan.ranges_m[j], buffer.amplitudes[k][j]});
+    positions_m.push_back(scan.position_m);
+    ranges_m.push_back(scan.ranges_m[j]);
   }
   // The point and its mirror image, each fitted to the ranges (for a straight walk both fit).
   find.starts = {found->position_m, found->mirror_m};
@@ -103,9 +112,10 @@ std::optional<SweepFind> VaSweep::Search(int step, int anchor_index, std::span<c
   // The supporting ranges leave the buffer. support holds at most one range per step, steps in
   // ascending order, so erasing from the back keeps the remaining indices valid.
   for (auto it = found->support.rbegin(); it != found->support.rend(); ++it) {
-    BufferedStep& b = buffer[it->first];
-    b.scan.ranges_m.erase(b.scan.ranges_m.begin() + static_cast<std::ptrdiff_t>(it->second));
-    b.amplitudes.erase(b.amplitudes.begin() + static_cast<std::ptrdiff_t>(it->second));
+    auto& ranges_at = buffer.scans[it->first].ranges_m;
+    auto& amplitudes_at = buffer.amplitudes[it->first];
+    ranges_at.erase(ranges_at.begin() + static_cast<std::ptrdiff_t>(it->second));
+    amplitudes_at.erase(amplitudes_at.begin() + static_cast<std::ptrdiff_t>(it->second));
   }
   return find;
 }

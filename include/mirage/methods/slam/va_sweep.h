@@ -72,9 +72,13 @@ class VaSweep {
   void Buffer(int step, int anchor_index, const Vec2& agent_m, std::span<const core::RangeMeasurement> ranges,
               const std::vector<bool>& used);
 
-  /// At the steps the sweep runs for this anchor ((step + anchor_index) % every_steps == 0),
-  /// searches its buffer for a point not within the exclusion radius of excluded_m (the anchor's
-  /// active VAs and live candidate hypotheses). The supporting ranges of a find leave the buffer
+  /// True at the steps the sweep runs for this anchor ((step + anchor_index) % every_steps == 0;
+  /// the anchors on different steps spread the cost).
+  [[nodiscard]] bool Due(int step, int anchor_index) const;
+
+  /// At the steps the sweep runs for this anchor (Due), searches its buffer for a point not
+  /// within the exclusion radius of excluded_m (the anchor's active VAs and live candidate
+  /// hypotheses). The supporting ranges of a find leave the buffer
   /// whether or not the caller makes a candidate of them, so that the same point cannot win every
   /// search and hide the next one.
   std::optional<SweepFind> Search(int step, int anchor_index, std::span<const Vec2> excluded_m);
@@ -87,15 +91,17 @@ class VaSweep {
   void Reset();
 
  private:
-  struct BufferedStep {
-    int step = 0;
-    estimation::RangeScan scan;                     // agent position, ranges sorted
-    std::vector<std::optional<double>> amplitudes;  // of scan.ranges_m, in the same order
+  // One anchor's buffered steps, oldest first, in parallel vectors (the scans are handed to the
+  // consensus search as they are).
+  struct AnchorBuffer {
+    std::vector<int> steps;
+    std::vector<estimation::RangeScan> scans;                    // agent position, ranges sorted
+    std::vector<std::vector<std::optional<double>>> amplitudes;  // of scans[k].ranges_m, same order
   };
   SweepOptions options_;
   int min_measurements_ = 1;
   double exclusion_radius_m_ = 0.0;
-  std::vector<std::vector<BufferedStep>> buffers_;  // per anchor index, oldest first
+  std::vector<AnchorBuffer> buffers_;  // per anchor index
 };
 
 }  // namespace mirage::methods::slam
