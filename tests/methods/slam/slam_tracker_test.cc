@@ -205,7 +205,8 @@ TEST(SlamTracker, ShadowConeWeakensOnlyTheDiscoveredVasBehindABlockedAnchor) {
   const auto plan = mint::testing::EmptySquareRoom();
   const auto anchors_only = mint::testing::SquareRoomVas(plan, 0);
   const auto truth = mint::testing::SquareRoomVas(plan, 1);
-  SlamOptions options;  // shadow cone 30 deg, 5 cm
+  SlamOptions options;
+  options.shadow_cone_deg = 30.0;  // off by default; 5 cm std added
   options.prior_visibility = false;
   const auto block_los = [&](std::vector<core::AnchorRanges>& ranges, const Vec2& p_m) {
     const double los_m = (anchors_only[0].position_m - p_m).norm();
