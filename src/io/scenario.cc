@@ -190,6 +190,8 @@ methods::slam::SlamOptions ReadSlam(YamlMap m, std::size_t walls) {
   o.motion = ReadMotion(m.OptionalMap("motion"), o.motion);
   o.variance = ReadVariance(m.OptionalMap("variance"));
   o.discovery = ReadDiscovery(m.OptionalMap("discovery"));
+  o.blocked_amplitude_probability =
+      m.NumberInRange("blocked_amplitude_probability", o.blocked_amplitude_probability, 0.0, 0.5, "");
   o.shadow_cone_deg = m.NumberInRange("shadow_cone_deg", o.shadow_cone_deg, 0.0, 180.0, "deg");
   o.shadow_sigma_m = m.NumberInRange("shadow_sigma_m", o.shadow_sigma_m, 1e-9, kHuge, "m");
   o.los_reacquire_m = m.NumberInRange("los_reacquire_m", o.los_reacquire_m, 0.0, kHuge, "m");

@@ -225,6 +225,7 @@ TEST(LoadScenario, ReadsTheSlamExamplesWithTheValuesTheyState) {
   EXPECT_DOUBLE_EQ(o.va_filter_sigma_m, 0.0623);
   EXPECT_TRUE(o.va_filter_keeps_associating);
   EXPECT_DOUBLE_EQ(o.amplitude_gate_probability, 0.001);
+  EXPECT_DOUBLE_EQ(o.blocked_amplitude_probability, 0.1);
   EXPECT_DOUBLE_EQ(o.shadow_cone_deg, 0.0);
   EXPECT_DOUBLE_EQ(o.shadow_sigma_m, 0.05);
   EXPECT_DOUBLE_EQ(o.los_reacquire_m, 0.4);

@@ -48,6 +48,9 @@ std::vector<std::string> Validate(const SlamOptions& options) {
   if (!(options.amplitude_gate_probability >= 0.0 && options.amplitude_gate_probability <= 0.5)) {
     problems.push_back("amplitude_gate_probability must be in [0, 0.5]");
   }
+  if (!(options.blocked_amplitude_probability >= 0.0 && options.blocked_amplitude_probability <= 0.5)) {
+    problems.push_back("blocked_amplitude_probability must be in [0, 0.5]");
+  }
   for (const auto& p : estimation::Validate(options.motion)) problems.push_back("motion." + p);
   for (const auto& p : mint::Validate(options.variance)) problems.push_back("variance." + p);
   for (const auto& p : Validate(options.discovery)) problems.push_back("discovery." + p);
@@ -216,9 +219,19 @@ std::vector<SlamTracker::Pairing> SlamTracker::Associate(const Reference& refere
       }
       gate_variance_m2.push_back(variance_m2 + CurrentVariance(map_[i].va.id));
     }
+    // The amplitude gate's level per candidate: stricter for the VAs without a visibility model
+    // of an anchor whose LOS is blocked at this step (blocked_amplitude_probability; stage 2).
+    const bool anchor_blocked = !los_only && options_.reassociate && LosMissed(anchor.anchor_index);
+    std::vector<double> amplitude_level(candidates.size(), options_.amplitude_gate_probability);
+    for (std::size_t k = 0; k < candidates.size(); ++k) {
+      const std::size_t i = candidates[k];
+      if (anchor_blocked && map_[i].va.origin != MapVaOrigin::kAnchor && !HasVisibility(i)) {
+        amplitude_level[k] = std::max(amplitude_level[k], options_.blocked_amplitude_probability);
+      }
+    }
     std::vector<std::optional<estimation::RicianLaw>> laws(candidates.size());
-    if (options_.amplitude_gate_probability > 0.0) {
-      for (std::size_t k = 0; k < candidates.size(); ++k) laws[k] = GateLaw(candidates[k], at_m, expected_m[k]);
+    for (std::size_t k = 0; k < candidates.size(); ++k) {
+      if (amplitude_level[k] > 0.0) laws[k] = GateLaw(candidates[k], at_m, expected_m[k]);
     }
     // LOS re-acquisition (SlamOptions::los_reacquire_m): a missed LOS gets the wider window,
     // but only where its amplitude law can vouch for the range.
@@ -248,8 +261,7 @@ std::vector<SlamTracker::Pairing> SlamTracker::Associate(const Reference& refere
         const auto law = widened ? GateLaw(candidates[k], at_m, z.range_m) : laws[k];
         bool amplitude_plausible = range_plausible;
         if (range_plausible && law) {
-          amplitude_plausible = z.amplitude ? estimation::RicianCdf(*z.amplitude, *law) >=
-                                                  options_.amplitude_gate_probability
+          amplitude_plausible = z.amplitude ? estimation::RicianCdf(*z.amplitude, *law) >= amplitude_level[k]
                                             : !widened;
         }
         distance(r, j) = amplitude_plausible ? std::abs(nu) : std::numeric_limits<double>::infinity();
@@ -471,6 +483,12 @@ void SlamTracker::NoteLosMisses(const std::vector<Pairing>& pairings) {
     any_missed = any_missed || e.los_missed;
   }
   if (any_missed) last_los_miss_step_ = step_;
+}
+
+bool SlamTracker::LosMissed(int anchor_index) const {
+  return std::any_of(map_.begin(), map_.end(), [&](const Entry& e) {
+    return e.va.origin == MapVaOrigin::kAnchor && e.va.anchor_index == anchor_index && e.los_missed;
+  });
 }
 
 std::vector<Vec2> SlamTracker::BlockedAnchors() const {

@@ -1,11 +1,13 @@
 // SPDX-License-Identifier: MIT
 // The SLAM tracker on synthetic unlabeled ranges in the 6 m x 6 m square room of
 // methods/mint/square_room.h: the known-VA baseline, discovery from the anchors alone on clean
-// ranges, lazy state augmentation, the amplitude gate, the shadow cone, the LOS re-acquisition,
-// the track-loss recovery with a floor-plan map, and option validation.
+// ranges, lazy state augmentation, the amplitude gate (also in a blocked anchor's shadow), the
+// shadow cone, the LOS re-acquisition, the track-loss recovery with a floor-plan map, and option
+// validation.
 #include "mirage/methods/slam/slam_tracker.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <functional>
 #include <vector>
@@ -126,6 +128,50 @@ SlamStepResult RunToStep(const SlamOptions& options, const geometry::VirtualAnch
   auto ranges = MeasureRanges(truth, plan, samples[k].position_m, MeasurementModel{}, rng);
   edit(ranges, samples[k].position_m);
   return tracker.Step(samples[k].t_s, ranges);
+}
+
+// Counts the discovered VAs of each anchor that step 150 of the loop associates when every
+// non-LOS range arrives at `amplitude_factor` of its amplitude (a stand-in weaker than the path,
+// as behind an obstacle) and, with `block_anchor0`, anchor 0's LOS is missing.
+std::array<int, 2> DiscoveredAssociationsWithWeakRanges(double blocked_amplitude_probability, bool block_anchor0,
+                                                        double amplitude_factor) {
+  const auto plan = mint::testing::EmptySquareRoom();
+  const auto anchors_only = mint::testing::SquareRoomVas(plan, 0);
+  const auto truth = mint::testing::SquareRoomVas(plan, 1);
+  SlamOptions options;
+  options.prior_visibility = false;
+  options.blocked_amplitude_probability = blocked_amplitude_probability;
+  const auto step = RunToStep(options, anchors_only, truth, 4, 150, [&](std::vector<core::AnchorRanges>& ranges,
+                                                                           const Vec2& p_m) {
+    for (auto& anchor : ranges) {
+      const double los_m = (anchors_only[anchor.anchor_index].position_m - p_m).norm();
+      if (block_anchor0 && anchor.anchor_index == 0) {
+        std::erase_if(anchor.ranges, [&](const core::RangeMeasurement& r) { return std::abs(r.range_m - los_m) < 0.1; });
+      }
+      for (auto& r : anchor.ranges) {
+        if (std::abs(r.range_m - los_m) >= 0.1 && r.amplitude) r.amplitude = amplitude_factor * *r.amplitude;
+      }
+    }
+  });
+  std::array<int, 2> count{0, 0};
+  for (const auto& a : step.associations) {
+    if (a.va_id >= kFirstDiscoveredVaId) ++count[static_cast<std::size_t>(a.anchor_index)];
+  }
+  return count;
+}
+
+TEST(SlamTracker, BlockedAnchorsDiscoveredVasNeedAStrongerAmplitude) {
+  // At 0.45 of their amplitude (Rician K = 10 dB: about the law's 0.5-5 % quantile) the ranges
+  // pass the ordinary gate (1e-3) but not the blocked anchor's (0.1).
+  const auto blocked = DiscoveredAssociationsWithWeakRanges(0.1, true, 0.45);
+  EXPECT_EQ(blocked[0], 0) << "anchor 0's LOS is blocked: its VAs' weak ranges are stand-ins";
+  EXPECT_GE(blocked[1], 1) << "anchor 1's LOS is there: the ordinary gate for its VAs";
+  const auto open = DiscoveredAssociationsWithWeakRanges(0.1, false, 0.45);
+  EXPECT_GE(open[0], 1) << "with the LOS present the same weak ranges pass";
+  const auto off = DiscoveredAssociationsWithWeakRanges(0.0, true, 0.45);
+  EXPECT_GE(off[0], 1) << "switched off, only the ordinary gate";
+  const auto strong = DiscoveredAssociationsWithWeakRanges(0.1, true, 1.0);
+  EXPECT_GE(strong[0], 1) << "the paths' own amplitudes pass while the LOS is blocked";
 }
 
 // Whether the tracker associates a weak range near anchor 0's LOS at step 60 of the loop, after
@@ -412,13 +458,15 @@ TEST(SlamTracker, InitializeForgetsAnEarlierLosMiss) {
 TEST(SlamTracker, ValidateNamesTheBadOption) {
   SlamOptions options;
   options.cutoff_m = 0.0;
+  options.blocked_amplitude_probability = 0.6;
   options.los_reacquire_m = -0.1;
   options.discovery.group_size = 2;
   const auto problems = Validate(options);
-  ASSERT_EQ(problems.size(), 3u);
+  ASSERT_EQ(problems.size(), 4u);
   EXPECT_EQ(problems[0].rfind("cutoff_m", 0), 0u);
   EXPECT_EQ(problems[1].rfind("los_reacquire_m", 0), 0u);
-  EXPECT_EQ(problems[2].rfind("discovery.group_size", 0), 0u);
+  EXPECT_EQ(problems[2].rfind("blocked_amplitude_probability", 0), 0u);
+  EXPECT_EQ(problems[3].rfind("discovery.group_size", 0), 0u);
 }
 
 }  // namespace
