@@ -219,19 +219,18 @@ std::vector<SlamTracker::Pairing> SlamTracker::Associate(const Reference& refere
       }
       gate_variance_m2.push_back(variance_m2 + CurrentVariance(map_[i].va.id));
     }
-    // The amplitude gate's level per candidate: stricter for the VAs without a visibility model
-    // of an anchor whose LOS is blocked at this step (blocked_amplitude_probability; stage 2).
+    // The amplitude gate's probability threshold per candidate, and its law where there is one:
+    // stricter for the VAs without a visibility model of an anchor whose LOS is blocked at this
+    // step (blocked_amplitude_probability; stage 2 only).
     const bool anchor_blocked = !los_only && options_.reassociate && LosMissed(anchor.anchor_index);
-    std::vector<double> amplitude_level(candidates.size(), options_.amplitude_gate_probability);
+    std::vector<double> min_amplitude_probability(candidates.size(), options_.amplitude_gate_probability);
+    std::vector<std::optional<estimation::RicianLaw>> laws(candidates.size());
     for (std::size_t k = 0; k < candidates.size(); ++k) {
       const std::size_t i = candidates[k];
       if (anchor_blocked && map_[i].va.origin != MapVaOrigin::kAnchor && !HasVisibility(i)) {
-        amplitude_level[k] = std::max(amplitude_level[k], options_.blocked_amplitude_probability);
+        min_amplitude_probability[k] = std::max(min_amplitude_probability[k], options_.blocked_amplitude_probability);
       }
-    }
-    std::vector<std::optional<estimation::RicianLaw>> laws(candidates.size());
-    for (std::size_t k = 0; k < candidates.size(); ++k) {
-      if (amplitude_level[k] > 0.0) laws[k] = GateLaw(candidates[k], at_m, expected_m[k]);
+      if (min_amplitude_probability[k] > 0.0) laws[k] = GateLaw(i, at_m, expected_m[k]);
     }
     // LOS re-acquisition (SlamOptions::los_reacquire_m): a missed LOS gets the wider window,
     // but only where its amplitude law can vouch for the range.
@@ -261,8 +260,8 @@ std::vector<SlamTracker::Pairing> SlamTracker::Associate(const Reference& refere
         const auto law = widened ? GateLaw(candidates[k], at_m, z.range_m) : laws[k];
         bool amplitude_plausible = range_plausible;
         if (range_plausible && law) {
-          amplitude_plausible = z.amplitude ? estimation::RicianCdf(*z.amplitude, *law) >= amplitude_level[k]
-                                            : !widened;
+          amplitude_plausible =
+              z.amplitude ? estimation::RicianCdf(*z.amplitude, *law) >= min_amplitude_probability[k] : !widened;
         }
         distance(r, j) = amplitude_plausible ? std::abs(nu) : std::numeric_limits<double>::infinity();
       }

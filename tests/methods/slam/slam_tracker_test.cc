@@ -171,7 +171,9 @@ TEST(SlamTracker, BlockedAnchorsDiscoveredVasNeedAStrongerAmplitude) {
   const auto off = DiscoveredAssociationsWithWeakRanges(0.0, true, 0.45);
   EXPECT_GE(off[0], 1) << "switched off, only the ordinary gate";
   const auto strong = DiscoveredAssociationsWithWeakRanges(0.1, true, 1.0);
-  EXPECT_GE(strong[0], 1) << "the paths' own amplitudes pass while the LOS is blocked";
+  const auto strong_off = DiscoveredAssociationsWithWeakRanges(0.0, true, 1.0);
+  EXPECT_GE(strong[0], 1);
+  EXPECT_EQ(strong, strong_off) << "the paths' own amplitudes pass while the LOS is blocked";
 }
 
 // Whether the tracker associates a weak range near anchor 0's LOS at step 60 of the loop, after

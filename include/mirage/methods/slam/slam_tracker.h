@@ -100,14 +100,16 @@ struct SlamOptions {
   double amplitude_gate_probability = 1e-3;
   /// Amplitude gate in a blocked anchor's shadow (mirage; 0 = off), in [0, 0.5]. While an
   /// anchor's LOS found no range at this step (stage 1: missing, gated out or filtered), a range
-  /// is associated to one of its VAs without a visibility model (a discovered one) only if its
-  /// amplitude has probability P(|alpha| <= measured) >= this under the VA's Rician law, instead
-  /// of amplitude_gate_probability. Why: the obstacle that blocks the LOS often blocks some of
+  /// is associated to one of its VAs without a visibility model (a discovered one, or a prior
+  /// one when prior_visibility is off) only if its amplitude has probability
+  /// P(|alpha| <= measured) >= this under the VA's Rician law, instead of
+  /// amplitude_gate_probability. Why: the obstacle that blocks the LOS often blocks some of
   /// the anchor's reflections too, and their diffuse stand-ins are weaker than the paths: in the
   /// seminar room (seed 1, discovered VAs while their anchor's LOS was blocked) the median of
   /// that probability was 0.15 for ranges of paths not visible and 0.48 for the paths' own; 0.1
   /// rejects 37 % of the former and 7 % of the latter. Unlike the shadow cone it needs no
-  /// obstacle geometry. Needs reassociate and a fitted law (a VA without one is not tested).
+  /// obstacle geometry. Needs reassociate and a fitted law within reach (GateLaw: a VA without
+  /// one, or whose law was fitted more than two window lengths away, is not tested).
   double blocked_amplitude_probability = 0.1;
   /// Shadow cone (mirage; 0 = off), half-width in degrees. A VA without a visibility model (a
   /// discovered one, or a prior one when prior_visibility is off) whose path reaches the agent
@@ -276,9 +278,10 @@ class SlamTracker {
     std::optional<estimation::RicianLaw> amplitude_law;
     Vec2 amplitude_law_at_m = Vec2::Zero();  ///< agent position of that estimate
     double amplitude_law_range_m = 0.0;       ///< expected range there
-    /// An anchor whose LOS found no range at the last step's stage 1 (LOS re-acquisition and
-    /// shadow cone). Without reassociate it is set from the joint association, where only the
-    /// recovery's watch window uses it (through last_los_miss_step_).
+    /// An anchor whose LOS found no range at stage 1: read at the next step's stage 1 (LOS
+    /// re-acquisition) and, once stage 1 has set it, at this step's stage 2 (shadow cone,
+    /// blocked_amplitude_probability). Without reassociate it is set from the joint association,
+    /// where only the recovery's watch window uses it (through last_los_miss_step_).
     bool los_missed = false;
   };
 
