@@ -165,6 +165,8 @@ methods::slam::DiscoveryOptions ReadDiscovery(YamlMap m) {
       m.NumberInRange("verify_min_inlier_fraction", o.verify_min_inlier_fraction, 1e-9, 1.0, "");
   o.verify_mirror_ratio = m.NumberInRange("verify_mirror_ratio", o.verify_mirror_ratio, 1.0, kHuge, "");
   o.verify_max_sigma_m = m.NumberInRange("verify_max_sigma_m", o.verify_max_sigma_m, 1e-9, kHuge, "m");
+  o.verify_far_sigma_per_m = m.NumberInRange("verify_far_sigma_per_m", o.verify_far_sigma_per_m, 0.0, kHuge, "");
+  o.verify_far_fit_rms_m = m.NumberInRange("verify_far_fit_rms_m", o.verify_far_fit_rms_m, 1e-9, kHuge, "m");
   o.sweep = ReadSweep(m.OptionalMap("sweep"));
   m.RejectUnknownKeys();
   Check(o, m);

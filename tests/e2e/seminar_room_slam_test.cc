@@ -2,11 +2,11 @@
 // End-to-end regression of the anchors-only SLAM example (examples/seminar_room_slam.yaml,
 // Leitinger et al.): simulated CIRs -> MPC extraction -> SLAM with only the two anchors known,
 // 5 runs per trajectory with the file's seed. Guards the issue-4 headline: p90 <= 6 cm on each
-// trajectory (README, 25 runs: 3.3 / 4.1 cm) with no diverged run, and a discovered map whose
+// trajectory (README, 25 runs: 3.3 / 3.9 cm) with no diverged run, and a discovered map whose
 // matched VAs are within 15 cm. The bound is the issue's target itself, not a widened one: these
-// 5 runs reach 3.3 / 4.3 cm; with the thesis's promotion rule trajectory 2 reaches 6.1 cm. It
+// 5 runs reach 3.3 / 3.9 cm; with the thesis's promotion rule trajectory 2 reaches 6.1 cm. It
 // does not guard the shadow-stretch safeguards (LOS re-acquisition, recovery: these 5 runs pass
-// without them, 4.3 cm; over 25 runs of seed 2 they save 2 runs, README) nor
+// without them, 3.9 cm; over 25 runs of seeds 2 and 3 they save 2 and 1 runs, README) nor
 // discovery.max_agent_sigma_m (the run that rule saves is seed 4's).
 #include <cstdio>
 #include <string>

@@ -234,6 +234,8 @@ TEST(LoadScenario, ReadsTheSlamExamplesWithTheValuesTheyState) {
   EXPECT_EQ(o.recovery.lost_steps, 3);
   EXPECT_TRUE(o.discovery.enabled);
   EXPECT_DOUBLE_EQ(o.discovery.max_agent_sigma_m, 0.1);
+  EXPECT_DOUBLE_EQ(o.discovery.verify_far_sigma_per_m, 0.015);
+  EXPECT_DOUBLE_EQ(o.discovery.verify_far_fit_rms_m, 0.025);
   EXPECT_EQ(o.discovery.group_size, 10);
   EXPECT_DOUBLE_EQ(o.discovery.min_group_baseline_m, 0.3);
   EXPECT_DOUBLE_EQ(o.discovery.max_fit_rms_m, 0.03);

@@ -45,6 +45,10 @@ std::vector<std::string> Validate(const DiscoveryOptions& o) {
     problems.push_back("verify_mirror_ratio must be >= 1");
   }
   positive(o.verify_max_sigma_m, "verify_max_sigma_m");
+  if (!(o.verify_far_sigma_per_m >= 0.0) || !std::isfinite(o.verify_far_sigma_per_m)) {
+    problems.push_back("verify_far_sigma_per_m must be >= 0");
+  }
+  positive(o.verify_far_fit_rms_m, "verify_far_fit_rms_m");
   if (!(o.duplicate_radius_m >= 0.0) || !std::isfinite(o.duplicate_radius_m)) {
     problems.push_back("duplicate_radius_m must be >= 0 m");
   }
@@ -206,8 +210,14 @@ VaDiscovery::Verdict VaDiscovery::Verify(const Candidate& candidate) const {
     verdict.kind = Verdict::kReject;  // no single point explains most of these ranges
     return verdict;
   }
-  if (fit.rms_m > options_.verify_fit_rms_m || inlier_fraction < options_.verify_min_inlier_fraction ||
-      sigma_m > options_.verify_max_sigma_m || mirror_score < options_.verify_mirror_ratio * scores[best]) {
+  // Placed well enough: within verify_max_sigma_m, or a far VA with a clean fit whose std is small
+  // for its distance (verify_far_sigma_per_m).
+  const double distance_m = (fit.position_m - candidate.samples.back().agent_m).norm();
+  const bool placed = sigma_m <= options_.verify_max_sigma_m ||
+                      (sigma_m <= options_.verify_far_sigma_per_m * distance_m &&
+                       fit.rms_m <= options_.verify_far_fit_rms_m);
+  if (fit.rms_m > options_.verify_fit_rms_m || inlier_fraction < options_.verify_min_inlier_fraction || !placed ||
+      mirror_score < options_.verify_mirror_ratio * scores[best]) {
     return verdict;  // kWait: more ranges, a longer turn
   }
   verdict.kind = Verdict::kPromote;

@@ -2,8 +2,9 @@
 // The VA discovery on its own: the ranges of one reflection seen from an L-shaped walk, fed in as
 // the tracker feeds them (one anchor, the ranges no active VA explains, the active VAs, the agent's
 // estimate and its covariance). A first-order VA is promoted on the right side of the walk once
-// the walk turns, and nothing is learnt from steps at which the agent is poorly localised; the
-// sweep finds a far VA that the step-to-step groups lose.
+// the walk turns, and nothing is learnt from steps at which the agent is poorly localised; a far
+// VA with a clean fit is promoted with a larger std; the sweep finds a far VA that the
+// step-to-step groups lose.
 #include "mirage/methods/slam/va_discovery.h"
 
 #include <algorithm>
@@ -13,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
@@ -134,6 +136,62 @@ TEST(VaDiscovery, ValidateNamesTheAgentSigmaLimit) {
   const auto problems = Validate(options);
   ASSERT_EQ(problems.size(), 1u);
   EXPECT_NE(problems.front().find("max_agent_sigma_m"), std::string::npos);
+}
+
+// The far-VA promotion rule (verify_far_sigma_per_m): a VA 10-11 m away seen from a 2.5 m
+// L-shaped walk is placed to about 16 cm across its direction when promoted: more than
+// verify_max_sigma_m (5 cm), within 1.5 % of its distance. Returns the VAs promoted from its ranges.
+const Vec2 kDistantVa_m(-8.0, 4.0);
+std::vector<DiscoveredVa> RunShortWalkToDistantVa(const DiscoveryOptions& options, double range_sigma_m) {
+  VaDiscovery discovery(options);
+  core::Rng rng(5, 0);
+  const std::vector<Vec2> waypoints{Vec2(1.0, 1.0), Vec2(2.5, 1.0), Vec2(2.5, 2.0)};
+  const auto walk = geometry::SampleTrajectory(waypoints, 0.5, 0.1);
+  std::vector<DiscoveredVa> promoted;
+  std::vector<Vec2> active_m;
+  for (std::size_t k = 0; k < walk.size(); ++k) {
+    const Vec2 agent_m = walk[k].position_m;
+    const double range_m = (kDistantVa_m - agent_m).norm() + rng.Normal(0.0, range_sigma_m);
+    std::vector<core::RangeMeasurement> unassociated;
+    if (active_m.empty()) unassociated.push_back({range_m, std::nullopt});
+    for (auto& va : discovery.Process(static_cast<int>(k), 0, agent_m, Isotropic(0.01), unassociated, active_m,
+                                      kCutoff_m)) {
+      active_m.push_back(va.position_m);
+      promoted.push_back(std::move(va));
+    }
+  }
+  return promoted;
+}
+
+TEST(VaDiscovery, AFarVaWithACleanFitIsPromotedDespiteItsAbsoluteStd) {
+  DiscoveryOptions near_only;
+  near_only.verify_far_sigma_per_m = 0.0;
+  EXPECT_TRUE(RunShortWalkToDistantVa(near_only, 0.01).empty()) << "the std is within 5 cm after all";
+  const auto promoted = RunShortWalkToDistantVa(DiscoveryOptions{}, 0.01);
+  ASSERT_EQ(promoted.size(), 1u);
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(promoted.front().covariance_m2);
+  const double sigma_m = std::sqrt(eig.eigenvalues()(1));
+  EXPECT_GT(sigma_m, DiscoveryOptions{}.verify_max_sigma_m);
+  EXPECT_LT((promoted.front().position_m - kDistantVa_m).norm(), 3.0 * sigma_m) << "the std is honest";
+}
+
+TEST(VaDiscovery, TheFarVaRuleNeedsACleanFit) {
+  // 3 cm range noise: the fit's RMS (about 3 cm) passes verify_fit_rms_m (4.5 cm) but not the far
+  // rule's 2.5 cm, which alone keeps the VA out.
+  EXPECT_TRUE(RunShortWalkToDistantVa(DiscoveryOptions{}, 0.03).empty());
+  DiscoveryOptions any_rms;
+  any_rms.verify_far_fit_rms_m = 1.0;
+  EXPECT_EQ(RunShortWalkToDistantVa(any_rms, 0.03).size(), 1u);
+}
+
+TEST(VaDiscovery, ValidateNamesTheFarVaOptions) {
+  DiscoveryOptions options;
+  options.verify_far_sigma_per_m = -0.01;
+  options.verify_far_fit_rms_m = 0.0;
+  const auto problems = Validate(options);
+  ASSERT_EQ(problems.size(), 2u);
+  EXPECT_NE(problems[0].find("verify_far_sigma_per_m"), std::string::npos);
+  EXPECT_NE(problems[1].find("verify_far_fit_rms_m"), std::string::npos);
 }
 
 // The sweep (stage D', mirage): a far, weak reflection seen from a straight walk changes its range

@@ -96,6 +96,19 @@ struct DiscoveryOptions {
   /// Promotion check: largest standard deviation of the fitted point along its worst direction
   /// (m), > 0. 5 cm, the accuracy the agent is tracked to: a VA known worse would pull it.
   double verify_max_sigma_m = 0.05;
+  /// Promotion check for far VAs (mirage; 0 = off), >= 0: a fit whose std exceeds
+  /// verify_max_sigma_m still passes if that std is at most this fraction of the fitted point's
+  /// distance from the agent's last sample and its RMS residual at most verify_far_fit_rms_m.
+  /// Why: a VA seen from a walk much shorter than its distance is placed poorly across its
+  /// direction, which moves its ranges little near where it was seen; the EKF carries that
+  /// covariance. In the seminar room A2's top-wall (blackboard) VA, 11 m from trajectory 2, fits
+  /// to 2 cm RMS with a 6-8 cm std and is otherwise never promoted. 1.5 %: about 1 deg; 1 % gave
+  /// nearly the same (docs/methods/slam.md).
+  double verify_far_sigma_per_m = 0.015;
+  /// RMS limit of the far-VA rule above (m), > 0. 2.5 cm: right far VAs fit to about 2 cm;
+  /// without this limit (the 4.5 cm of verify_fit_rms_m) a false far VA, a fit across two
+  /// wall offsets, was promoted and a run diverged; 3 cm was worse on trajectory 1.
+  double verify_far_fit_rms_m = 0.025;
   /// Consecutive steps in which a hypothesis failed the cut-off while its sibling passed, after
   /// which it is dismissed (>= 1) [GAP: the thesis promotes when the wrong hypothesis "is no
   /// longer associated"].
