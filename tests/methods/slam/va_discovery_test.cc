@@ -176,12 +176,15 @@ TEST(VaDiscovery, AFarVaWithACleanFitIsPromotedDespiteItsAbsoluteStd) {
 }
 
 TEST(VaDiscovery, TheFarVaRuleNeedsACleanFit) {
-  // 3 cm range noise: the fit's RMS (about 3 cm) passes verify_fit_rms_m (4.5 cm) but not the far
-  // rule's 2.5 cm, which alone keeps the VA out.
-  EXPECT_TRUE(RunShortWalkToDistantVa(DiscoveryOptions{}, 0.03).empty());
+  // 2 cm range noise: the fit's RMS (about 2 cm) is within verify_fit_rms_m (4.5 cm); the far
+  // rule's own RMS limit alone decides. The limits are set here, not the defaults, so the verdict
+  // does not hang on how close this seed's RMS comes to 2.5 cm.
+  DiscoveryOptions strict;
+  strict.verify_far_fit_rms_m = 0.01;
+  EXPECT_TRUE(RunShortWalkToDistantVa(strict, 0.02).empty());
   DiscoveryOptions any_rms;
   any_rms.verify_far_fit_rms_m = 1.0;
-  EXPECT_EQ(RunShortWalkToDistantVa(any_rms, 0.03).size(), 1u);
+  EXPECT_EQ(RunShortWalkToDistantVa(any_rms, 0.02).size(), 1u);
 }
 
 TEST(VaDiscovery, ValidateNamesTheFarVaOptions) {

@@ -8,7 +8,8 @@
 //   C. promotion of a resolved candidate: once the agent positions of its ranges span two
 //      dimensions (the agent turned) and it has enough measurements, a batch least-squares fit
 //      over all its ranges from both mirror hypotheses must find one point that explains them
-//      (small residual, few outliers, small covariance) and leave the mirror clearly worse;
+//      (small residual, few outliers, small covariance, or for a far VA a covariance small for
+//      its distance with a cleaner fit) and leave the mirror clearly worse;
 //      that point is returned to the tracker, which puts it into the state (mirage choice: the
 //      thesis promotes when the RLS association drops the wrong hypothesis, which on diffuse
 //      multipath promoted many wrong points);
@@ -94,7 +95,8 @@ struct DiscoveryOptions {
   /// On the seminar-room signals true VAs reach 1.5 after about 0.5 m of walking across.
   double verify_mirror_ratio = 1.5;
   /// Promotion check: largest standard deviation of the fitted point along its worst direction
-  /// (m), > 0. 5 cm, the accuracy the agent is tracked to: a VA known worse would pull it.
+  /// (m), > 0. 5 cm, the accuracy the agent is tracked to: a VA known worse would pull it
+  /// (except a far one, whose ranges it moves little: verify_far_sigma_per_m below).
   double verify_max_sigma_m = 0.05;
   /// Promotion check for far VAs (mirage; 0 = off), >= 0: a fit whose std exceeds
   /// verify_max_sigma_m still passes if that std is at most this fraction of the fitted point's
@@ -102,7 +104,8 @@ struct DiscoveryOptions {
   /// Why: a VA seen from a walk much shorter than its distance is placed poorly across its
   /// direction, which moves its ranges little near where it was seen; the EKF carries that
   /// covariance. In the seminar room A2's top-wall (blackboard) VA, 11 m from trajectory 2, fits
-  /// to 2 cm RMS with a 6-8 cm std and is otherwise never promoted. 1.5 %: about 1 deg; 1 % gave
+  /// to 2 cm RMS with a 6-8 cm std and is otherwise never promoted. 1.5 %: just under 1 deg
+  /// across the VA's direction. No absolute cap: the RMS limit below is the guard. 1 % gave
   /// nearly the same (docs/methods/slam.md).
   double verify_far_sigma_per_m = 0.015;
   /// RMS limit of the far-VA rule above (m), > 0. 2.5 cm: right far VAs fit to about 2 cm;
