@@ -158,6 +158,10 @@ bool SlamTracker::HasVisibility(std::size_t map_index) const {
   return map_[map_index].va.origin == MapVaOrigin::kPrior && ScoresFloorPlanVas(options_, *plan_);
 }
 
+bool SlamTracker::LacksVisibilityModel(std::size_t map_index) const {
+  return map_[map_index].va.origin != MapVaOrigin::kAnchor && !HasVisibility(map_index);
+}
+
 bool SlamTracker::Filtered(std::size_t map_index) const {
   const MapVa& va = map_[map_index].va;
   if (!options_.va_filter || !options_.variance.enabled) return false;
@@ -227,7 +231,7 @@ std::vector<SlamTracker::Pairing> SlamTracker::Associate(const Reference& refere
     std::vector<std::optional<estimation::RicianLaw>> laws(candidates.size());
     for (std::size_t k = 0; k < candidates.size(); ++k) {
       const std::size_t i = candidates[k];
-      if (anchor_blocked && map_[i].va.origin != MapVaOrigin::kAnchor && !HasVisibility(i)) {
+      if (anchor_blocked && LacksVisibilityModel(i)) {
         min_amplitude_probability[k] = std::max(min_amplitude_probability[k], options_.blocked_amplitude_probability);
       }
       if (min_amplitude_probability[k] > 0.0) laws[k] = GateLaw(i, at_m, expected_m[k]);
@@ -507,7 +511,7 @@ void SlamTracker::MarkShadowed(std::vector<Pairing>& pairings, std::span<const V
   std::vector<Vec2> to_blocked;
   for (const Vec2& a_m : blocked_m) to_blocked.push_back((a_m - at_m).normalized());
   for (auto& p : pairings) {
-    if (map_[p.map_index].va.origin == MapVaOrigin::kAnchor || HasVisibility(p.map_index)) continue;
+    if (!LacksVisibilityModel(p.map_index)) continue;
     const Vec2 to_va = (VaPosition(p.map_index) - at_m).normalized();
     p.shadowed =
         std::any_of(to_blocked.begin(), to_blocked.end(), [&](const Vec2& u) { return to_va.dot(u) > cos_cone; });

@@ -243,6 +243,10 @@ class SlamTracker {
   [[nodiscard]] bool Filtered(std::size_t map_index) const;
   // A prior VA whose visibility region the known floor plan gives.
   [[nodiscard]] bool HasVisibility(std::size_t map_index) const;
+  // A VA that may be associated where its path is blocked: neither an anchor nor a VA with a
+  // visibility region (discovered VAs, prior ones without prior_visibility). The shadow cone and
+  // the blocked-anchor amplitude gate apply to these.
+  [[nodiscard]] bool LacksVisibilityModel(std::size_t map_index) const;
   [[nodiscard]] double CurrentVariance(int va_id) const;
   // Map entries of one anchor that may be associated at the reference position.
   [[nodiscard]] std::vector<std::size_t> Candidates(int anchor_index, const Vec2& at_m, bool los_only) const;
