@@ -95,6 +95,11 @@ class ScenarioFiles : public ::testing::Test {
     return Write(name, "extends: " + Example("seminar_room.yaml") + "\n" + text);
   }
 
+  // A file that extends the anchors-only SLAM example and sets the given keys.
+  std::string OverrideSlam(const std::string& name, const std::string& text) const {
+    return Write(name, "extends: " + Example("seminar_room_slam.yaml") + "\n" + text);
+  }
+
   // The InputError message of loading `path` (fails the test if it loads).
   static std::string ErrorOf(const std::string& path) {
     try {
@@ -219,6 +224,7 @@ TEST(LoadScenario, ReadsTheSlamExamplesWithTheValuesTheyState) {
   EXPECT_FALSE(o.prior_visibility);
   EXPECT_TRUE(o.reassociate);
   EXPECT_DOUBLE_EQ(o.innovation_gate_chi2, 9.0);
+  EXPECT_DOUBLE_EQ(o.no_visibility_gate_chi2, 4.0);
   EXPECT_DOUBLE_EQ(o.motion.accel_sigma_mps2, 0.5);  // slam.motion, not mint.motion's 1.0
   EXPECT_DOUBLE_EQ(anchors_only.mint.mint.motion.accel_sigma_mps2, 1.0);
   EXPECT_TRUE(o.va_filter);
@@ -415,11 +421,11 @@ TEST_F(ScenarioFiles, NamesABadMotionKeyOfEitherTrackerWithItsPath) {
 
 TEST_F(ScenarioFiles, ReadsTheSweepKeys) {
   // Every value differs from its default, so each key must have been read.
-  const std::string path = Write("sweep.yaml", "extends: " + Example("seminar_room_slam.yaml") +
-                                                   "\nslam:\n  discovery:\n    sweep:\n      enabled: false\n"
-                                                   "      window_steps: 40\n      every_steps: 10\n"
-                                                   "      min_baseline_m: 1.5\n      gate_m: 0.03\n"
-                                                   "      min_support_fraction: 0.7\n");
+  const std::string path = OverrideSlam("sweep.yaml",
+                                         "slam:\n  discovery:\n    sweep:\n      enabled: false\n"
+                                         "      window_steps: 40\n      every_steps: 10\n"
+                                         "      min_baseline_m: 1.5\n      gate_m: 0.03\n"
+                                         "      min_support_fraction: 0.7\n");
   const auto& sweep = LoadScenario(path).mint.slam.discovery.sweep;
   EXPECT_FALSE(sweep.enabled);
   EXPECT_EQ(sweep.window_steps, 40);
@@ -429,10 +435,27 @@ TEST_F(ScenarioFiles, ReadsTheSweepKeys) {
   EXPECT_DOUBLE_EQ(sweep.min_support_fraction, 0.7);
 }
 
+TEST_F(ScenarioFiles, ReadsTheSlamGateKeys) {
+  // Every value differs from its default and from the others, so each key must have been read
+  // into its own option.
+  const std::string path = OverrideSlam("gates.yaml",
+                                         "slam:\n  innovation_gate_chi2: 6\n  no_visibility_gate_chi2: 2.5\n"
+                                         "  amplitude_gate_probability: 0.01\n  blocked_amplitude_probability: 0.2\n");
+  const auto& slam = LoadScenario(path).mint.slam;
+  EXPECT_DOUBLE_EQ(slam.innovation_gate_chi2, 6.0);
+  EXPECT_DOUBLE_EQ(slam.no_visibility_gate_chi2, 2.5);
+  EXPECT_DOUBLE_EQ(slam.amplitude_gate_probability, 0.01);
+  EXPECT_DOUBLE_EQ(slam.blocked_amplitude_probability, 0.2);
+}
+
+TEST_F(ScenarioFiles, NamesABadSlamGateWithItsPathAndLine) {
+  const std::string path = OverrideSlam("gates_bad.yaml", "slam:\n  no_visibility_gate_chi2: -1\n");
+  ExpectError(ErrorOf(path), path, 3, {"slam.no_visibility_gate_chi2", "out of range"});
+}
+
 TEST_F(ScenarioFiles, NamesABadSweepKeyWithItsPathAndLine) {
   const std::string path =
-      Write("sweep_bad.yaml", "extends: " + Example("seminar_room_slam.yaml") +
-                                  "\nslam:\n  discovery:\n    sweep:\n      min_support_fraction: 1.5\n");
+      OverrideSlam("sweep_bad.yaml", "slam:\n  discovery:\n    sweep:\n      min_support_fraction: 1.5\n");
   ExpectError(ErrorOf(path), path, 5, {"slam.discovery.sweep.min_support_fraction", "out of range"});
 }
 

@@ -45,6 +45,9 @@ std::vector<std::string> Validate(const SlamOptions& options) {
   if (!(options.innovation_gate_chi2 >= 0.0) || !std::isfinite(options.innovation_gate_chi2)) {
     problems.push_back("innovation_gate_chi2 must be >= 0");
   }
+  if (!(options.no_visibility_gate_chi2 >= 0.0) || !std::isfinite(options.no_visibility_gate_chi2)) {
+    problems.push_back("no_visibility_gate_chi2 must be >= 0");
+  }
   if (!(options.amplitude_gate_probability >= 0.0 && options.amplitude_gate_probability <= 0.5)) {
     problems.push_back("amplitude_gate_probability must be in [0, 0.5]");
   }
@@ -223,16 +226,23 @@ std::vector<SlamTracker::Pairing> SlamTracker::Associate(const Reference& refere
       }
       gate_variance_m2.push_back(variance_m2 + CurrentVariance(map_[i].va.id));
     }
-    // The amplitude gate's probability threshold per candidate, and its law where there is one:
-    // stricter for the VAs without a visibility model of an anchor whose LOS is blocked at this
-    // step (blocked_amplitude_probability; stage 2 only).
+    // Per candidate, the amplitude gate's probability threshold and its law where there is one,
+    // and the innovation gate. For the VAs without a visibility model both are stricter: the
+    // amplitude threshold while their anchor's LOS is blocked at this step
+    // (blocked_amplitude_probability; stage 2 only), the innovation gate always
+    // (no_visibility_gate_chi2; 0 = off, as for the gate itself).
     const bool anchor_blocked = !los_only && options_.reassociate && LosMissed(anchor.anchor_index);
     std::vector<double> min_amplitude_probability(candidates.size(), options_.amplitude_gate_probability);
     std::vector<std::optional<estimation::RicianLaw>> laws(candidates.size());
+    std::vector<double> gate_chi2(candidates.size(), gate);
     for (std::size_t k = 0; k < candidates.size(); ++k) {
       const std::size_t i = candidates[k];
-      if (anchor_blocked && LacksVisibilityModel(i)) {
-        min_amplitude_probability[k] = std::max(min_amplitude_probability[k], options_.blocked_amplitude_probability);
+      if (LacksVisibilityModel(i)) {
+        if (anchor_blocked) {
+          min_amplitude_probability[k] = std::max(min_amplitude_probability[k], options_.blocked_amplitude_probability);
+        }
+        const double tight = options_.no_visibility_gate_chi2;
+        if (tight > 0.0) gate_chi2[k] = gate > 0.0 ? std::min(gate, tight) : tight;
       }
       if (min_amplitude_probability[k] > 0.0) laws[k] = GateLaw(i, at_m, expected_m[k]);
     }
@@ -257,7 +267,7 @@ std::vector<SlamTracker::Pairing> SlamTracker::Associate(const Reference& refere
         const double nu = z.range_m - expected_m[k];
         // The amplitude test (a series) only for pairs the range tests let through.
         const bool range_plausible =
-            std::abs(nu) < cutoff_m[k] && estimation::InsideChi2Gate(nu, gate_variance_m2[k], gate);
+            std::abs(nu) < cutoff_m[k] && estimation::InsideChi2Gate(nu, gate_variance_m2[k], gate_chi2[k]);
         // In the widened window the law is scaled to the range itself (the free-space loss of the
         // path it would be: the expected range can be 0.4 m off), and a range without an
         // amplitude is not taken.

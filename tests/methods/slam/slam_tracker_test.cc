@@ -2,6 +2,7 @@
 // The SLAM tracker on synthetic unlabeled ranges in the 6 m x 6 m square room of
 // methods/mint/square_room.h: the known-VA baseline, discovery from the anchors alone on clean
 // ranges, lazy state augmentation, the amplitude gate (also in a blocked anchor's shadow), the
+// tighter innovation gate for VAs without a visibility region, the
 // shadow cone, the LOS re-acquisition, the track-loss recovery with a floor-plan map, and option
 // validation.
 #include "mirage/methods/slam/slam_tracker.h"
@@ -10,6 +11,7 @@
 #include <array>
 #include <cmath>
 #include <functional>
+#include <map>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -174,6 +176,63 @@ TEST(SlamTracker, BlockedAnchorsDiscoveredVasNeedAStrongerAmplitude) {
   const auto strong_off = DiscoveredAssociationsWithWeakRanges(0.0, true, 1.0);
   EXPECT_GE(strong[0], 1);
   EXPECT_EQ(strong, strong_off) << "the paths' own amplitudes pass while the LOS is blocked";
+}
+
+// Per VA id, the smallest shift of the reflections' ranges (0-14 cm in 0.5 cm steps) at step 60
+// of the loop at which the tracker no longer associates that VA (1 m if it always does), with the
+// first-order VAs known (prior_visibility as given) and the LOS ranges unshifted.
+std::map<int, double> RejectionShifts(double no_visibility_gate_chi2, bool prior_visibility) {
+  const auto plan = mint::testing::EmptySquareRoom();
+  const auto vas = mint::testing::SquareRoomVas(plan, 1);
+  SlamOptions options;
+  options.prior_max_order = 1;
+  options.prior_visibility = prior_visibility;
+  options.discovery.enabled = false;
+  options.no_visibility_gate_chi2 = no_visibility_gate_chi2;
+  std::map<int, double> rejected_at_m;
+  for (const auto& va : vas.all()) rejected_at_m[va.id] = 1.0;
+  for (int i = 28; i >= 0; --i) {  // downwards: the smallest rejecting shift is written last
+    const double shift_m = 0.005 * i;
+    const auto step = RunToStep(options, vas, vas, 6, 60, [&](std::vector<core::AnchorRanges>& ranges, const Vec2& p_m) {
+      for (auto& anchor : ranges) {
+        const double los_m = (vas[anchor.anchor_index].position_m - p_m).norm();  // vas[a]: anchor a
+        for (auto& r : anchor.ranges) {
+          if (std::abs(r.range_m - los_m) >= 0.1) r.range_m += shift_m;
+        }
+      }
+    });
+    for (const auto& va : vas.all()) {
+      const bool associated = std::any_of(step.associations.begin(), step.associations.end(),
+                                          [&](const SlamAssociation& a) { return a.va_id == va.id; });
+      if (!associated) rejected_at_m[va.id] = shift_m;
+    }
+  }
+  return rejected_at_m;
+}
+
+TEST(SlamTracker, TheNoVisibilityGateIsTighterOnlyForVasWithoutAVisibilityRegion) {
+  // Without visibility regions (prior_visibility off, as for discovered VAs) the 2-sigma gate
+  // rejects a shifted reflection earlier than the 3-sigma gate; the anchors' LOS is unaffected.
+  const auto wide = RejectionShifts(0.0, false);
+  const auto tight = RejectionShifts(4.0, false);
+  const auto plan = mint::testing::EmptySquareRoom();
+  const auto vas = mint::testing::SquareRoomVas(plan, 1);
+  int compared = 0;
+  for (const auto& va : vas.all()) {
+    if (va.order == 0) {
+      EXPECT_EQ(tight.at(va.id), wide.at(va.id)) << "anchor " << va.anchor_index << "'s LOS keeps the 3-sigma gate";
+      continue;
+    }
+    if (wide.at(va.id) == 0.0) continue;  // not associated even unshifted (e.g. overlapping paths)
+    ++compared;
+    EXPECT_LT(wide.at(va.id), 1.0) << "VA " << va.id << ": a 14 cm shift leaves the 3-sigma gate";
+    EXPECT_LT(tight.at(va.id), wide.at(va.id)) << "VA " << va.id;
+    // The thresholds scale with the gate's width, 2 against 3 sigma, up to the range's own error.
+    EXPECT_LT(tight.at(va.id), 0.85 * wide.at(va.id)) << "VA " << va.id;
+  }
+  EXPECT_GE(compared, 6) << "most of the 8 first-order VAs are associated at step 60";
+  // With visibility regions the option changes nothing.
+  EXPECT_EQ(RejectionShifts(4.0, true), RejectionShifts(0.0, true));
 }
 
 // Whether the tracker associates a weak range near anchor 0's LOS at step 60 of the loop, after
@@ -462,13 +521,15 @@ TEST(SlamTracker, ValidateNamesTheBadOption) {
   options.cutoff_m = 0.0;
   options.blocked_amplitude_probability = 0.6;
   options.los_reacquire_m = -0.1;
+  options.no_visibility_gate_chi2 = -1.0;
   options.discovery.group_size = 2;
   const auto problems = Validate(options);
-  ASSERT_EQ(problems.size(), 4u);
+  ASSERT_EQ(problems.size(), 5u);
   EXPECT_EQ(problems[0].rfind("cutoff_m", 0), 0u);
   EXPECT_EQ(problems[1].rfind("los_reacquire_m", 0), 0u);
-  EXPECT_EQ(problems[2].rfind("blocked_amplitude_probability", 0), 0u);
-  EXPECT_EQ(problems[3].rfind("discovery.group_size", 0), 0u);
+  EXPECT_EQ(problems[2].rfind("no_visibility_gate_chi2", 0), 0u);
+  EXPECT_EQ(problems[3].rfind("blocked_amplitude_probability", 0), 0u);
+  EXPECT_EQ(problems[4].rfind("discovery.group_size", 0), 0u);
 }
 
 }  // namespace
