@@ -182,7 +182,7 @@ methods::slam::SlamOptions ReadSlam(YamlMap m, std::size_t walls) {
   o.prior_visibility = m.Boolean("prior_visibility", o.prior_visibility);
   o.reassociate = m.Boolean("reassociate", o.reassociate);
   o.innovation_gate_chi2 = m.NumberInRange("innovation_gate_chi2", o.innovation_gate_chi2, 0.0, 1e6, "");
-  o.no_visibility_gate_chi2 = m.NumberInRange("no_visibility_gate_chi2", o.no_visibility_gate_chi2, 0.0, 1e6, "");
+  o.no_visibility_model_gate_chi2 = m.NumberInRange("no_visibility_model_gate_chi2", o.no_visibility_model_gate_chi2, 0.0, 1e6, "");
   o.va_filter = m.Boolean("va_filter", o.va_filter);
   o.va_filter_sigma_m = m.NumberInRange("va_filter_sigma_m", o.va_filter_sigma_m, 1e-9, kHuge, "m");
   o.va_filter_keeps_associating = m.Boolean("va_filter_keeps_associating", o.va_filter_keeps_associating);

@@ -224,7 +224,7 @@ TEST(LoadScenario, ReadsTheSlamExamplesWithTheValuesTheyState) {
   EXPECT_FALSE(o.prior_visibility);
   EXPECT_TRUE(o.reassociate);
   EXPECT_DOUBLE_EQ(o.innovation_gate_chi2, 9.0);
-  EXPECT_DOUBLE_EQ(o.no_visibility_gate_chi2, 4.0);
+  EXPECT_DOUBLE_EQ(o.no_visibility_model_gate_chi2, 4.0);
   EXPECT_DOUBLE_EQ(o.motion.accel_sigma_mps2, 0.5);  // slam.motion, not mint.motion's 1.0
   EXPECT_DOUBLE_EQ(anchors_only.mint.mint.motion.accel_sigma_mps2, 1.0);
   EXPECT_TRUE(o.va_filter);
@@ -439,18 +439,18 @@ TEST_F(ScenarioFiles, ReadsTheSlamGateKeys) {
   // Every value differs from its default and from the others, so each key must have been read
   // into its own option.
   const std::string path = OverrideSlam("gates.yaml",
-                                         "slam:\n  innovation_gate_chi2: 6\n  no_visibility_gate_chi2: 2.5\n"
+                                         "slam:\n  innovation_gate_chi2: 6\n  no_visibility_model_gate_chi2: 2.5\n"
                                          "  amplitude_gate_probability: 0.01\n  blocked_amplitude_probability: 0.2\n");
   const auto& slam = LoadScenario(path).mint.slam;
   EXPECT_DOUBLE_EQ(slam.innovation_gate_chi2, 6.0);
-  EXPECT_DOUBLE_EQ(slam.no_visibility_gate_chi2, 2.5);
+  EXPECT_DOUBLE_EQ(slam.no_visibility_model_gate_chi2, 2.5);
   EXPECT_DOUBLE_EQ(slam.amplitude_gate_probability, 0.01);
   EXPECT_DOUBLE_EQ(slam.blocked_amplitude_probability, 0.2);
 }
 
 TEST_F(ScenarioFiles, NamesABadSlamGateWithItsPathAndLine) {
-  const std::string path = OverrideSlam("gates_bad.yaml", "slam:\n  no_visibility_gate_chi2: -1\n");
-  ExpectError(ErrorOf(path), path, 3, {"slam.no_visibility_gate_chi2", "out of range"});
+  const std::string path = OverrideSlam("gates_bad.yaml", "slam:\n  no_visibility_model_gate_chi2: -1\n");
+  ExpectError(ErrorOf(path), path, 3, {"slam.no_visibility_model_gate_chi2", "out of range"});
 }
 
 TEST_F(ScenarioFiles, NamesABadSweepKeyWithItsPathAndLine) {

@@ -45,8 +45,8 @@ std::vector<std::string> Validate(const SlamOptions& options) {
   if (!(options.innovation_gate_chi2 >= 0.0) || !std::isfinite(options.innovation_gate_chi2)) {
     problems.push_back("innovation_gate_chi2 must be >= 0");
   }
-  if (!(options.no_visibility_gate_chi2 >= 0.0) || !std::isfinite(options.no_visibility_gate_chi2)) {
-    problems.push_back("no_visibility_gate_chi2 must be >= 0");
+  if (!(options.no_visibility_model_gate_chi2 >= 0.0) || !std::isfinite(options.no_visibility_model_gate_chi2)) {
+    problems.push_back("no_visibility_model_gate_chi2 must be >= 0");
   }
   if (!(options.amplitude_gate_probability >= 0.0 && options.amplitude_gate_probability <= 0.5)) {
     problems.push_back("amplitude_gate_probability must be in [0, 0.5]");
@@ -230,7 +230,7 @@ std::vector<SlamTracker::Pairing> SlamTracker::Associate(const Reference& refere
     // and the innovation gate. For the VAs without a visibility model both are stricter: the
     // amplitude threshold while their anchor's LOS is blocked at this step
     // (blocked_amplitude_probability; stage 2 only), the innovation gate always
-    // (no_visibility_gate_chi2; 0 = off, as for the gate itself).
+    // (no_visibility_model_gate_chi2; 0 = off, as for the gate itself).
     const bool anchor_blocked = !los_only && options_.reassociate && LosMissed(anchor.anchor_index);
     std::vector<double> min_amplitude_probability(candidates.size(), options_.amplitude_gate_probability);
     std::vector<std::optional<estimation::RicianLaw>> laws(candidates.size());
@@ -241,7 +241,7 @@ std::vector<SlamTracker::Pairing> SlamTracker::Associate(const Reference& refere
         if (anchor_blocked) {
           min_amplitude_probability[k] = std::max(min_amplitude_probability[k], options_.blocked_amplitude_probability);
         }
-        const double tight = options_.no_visibility_gate_chi2;
+        const double tight = options_.no_visibility_model_gate_chi2;
         if (tight > 0.0) gate_chi2[k] = gate > 0.0 ? std::min(gate, tight) : tight;
       }
       if (min_amplitude_probability[k] > 0.0) laws[k] = GateLaw(i, at_m, expected_m[k]);
