@@ -235,6 +235,7 @@ TEST(LoadScenario, ReadsTheSlamExamplesWithTheValuesTheyState) {
   EXPECT_DOUBLE_EQ(o.shadow_cone_deg, 0.0);
   EXPECT_DOUBLE_EQ(o.shadow_sigma_m, 0.05);
   EXPECT_DOUBLE_EQ(o.los_reacquire_m, 0.4);
+  EXPECT_EQ(o.nis_window, 20);
   EXPECT_TRUE(o.recovery.enabled);
   EXPECT_EQ(o.recovery.min_margin, 2);
   EXPECT_EQ(o.recovery.lost_steps, 3);
@@ -435,17 +436,19 @@ TEST_F(ScenarioFiles, ReadsTheSweepKeys) {
   EXPECT_DOUBLE_EQ(sweep.min_support_fraction, 0.7);
 }
 
-TEST_F(ScenarioFiles, ReadsTheSlamGateKeys) {
+TEST_F(ScenarioFiles, ReadsTheSlamGateAndVarianceKeys) {
   // Every value differs from its default and from the others, so each key must have been read
   // into its own option.
   const std::string path = OverrideSlam("gates.yaml",
                                          "slam:\n  innovation_gate_chi2: 6\n  no_visibility_model_gate_chi2: 2.5\n"
-                                         "  amplitude_gate_probability: 0.01\n  blocked_amplitude_probability: 0.2\n");
+                                         "  amplitude_gate_probability: 0.01\n  blocked_amplitude_probability: 0.2\n"
+                                         "  nis_window: 7\n");
   const auto& slam = LoadScenario(path).mint.slam;
   EXPECT_DOUBLE_EQ(slam.innovation_gate_chi2, 6.0);
   EXPECT_DOUBLE_EQ(slam.no_visibility_model_gate_chi2, 2.5);
   EXPECT_DOUBLE_EQ(slam.amplitude_gate_probability, 0.01);
   EXPECT_DOUBLE_EQ(slam.blocked_amplitude_probability, 0.2);
+  EXPECT_EQ(slam.nis_window, 7);
 }
 
 TEST_F(ScenarioFiles, NamesABadSlamGateWithItsPathAndLine) {

@@ -48,6 +48,7 @@ std::vector<std::string> Validate(const SlamOptions& options) {
   if (!(options.no_visibility_model_gate_chi2 >= 0.0) || !std::isfinite(options.no_visibility_model_gate_chi2)) {
     problems.push_back("no_visibility_model_gate_chi2 must be >= 0");
   }
+  if (options.nis_window < 0) problems.push_back("nis_window must be >= 0");
   if (!(options.amplitude_gate_probability >= 0.0 && options.amplitude_gate_probability <= 0.5)) {
     problems.push_back("amplitude_gate_probability must be in [0, 0.5]");
   }
@@ -130,6 +131,7 @@ void SlamTracker::Initialize(double t_s, const Vec2& p0_m) {
   for (const auto& va : known_vas_->all()) {
     if (va.order > options_.prior_max_order) continue;
     Entry e;
+    e.innovation_scale = estimation::InnovationScale(static_cast<std::size_t>(options_.nis_window));
     e.va.id = va.id;
     e.va.anchor_index = va.anchor_index;
     e.va.origin = va.order == 0 ? MapVaOrigin::kAnchor : MapVaOrigin::kPrior;
@@ -287,7 +289,9 @@ std::vector<SlamTracker::Pairing> SlamTracker::Associate(const Reference& refere
       p.anchor_index = anchor.anchor_index;
       p.map_index = candidates[k];
       p.measurement = &anchor.ranges[static_cast<std::size_t>(assignment[k])];
-      p.reacquired = std::abs(p.measurement->range_m - expected_m[k]) >= options_.cutoff_m;
+      const double nu_m = p.measurement->range_m - expected_m[k];
+      p.reacquired = std::abs(nu_m) >= options_.cutoff_m;
+      p.nis = nu_m * nu_m / gate_variance_m2[k];
       for (std::size_t o = 0; o < candidates.size(); ++o) {
         if (o != k && std::abs(expected_m[o] - expected_m[k]) < options_.variance.overlap_distance_m) {
           p.overlapped = true;
@@ -419,6 +423,10 @@ SlamStepResult SlamTracker::Step(double t_s, std::span<const core::AnchorRanges>
     // as soon as its own estimate says so.
     if (Filtered(p.map_index)) continue;
     if (p.shadowed) a.variance_m2 += options_.shadow_sigma_m * options_.shadow_sigma_m;
+    // Weighted by the VA's own record of innovations, before this one enters it.
+    estimation::InnovationScale& scale = map_[p.map_index].innovation_scale;
+    a.variance_m2 *= scale.Factor();
+    scale.Add(p.nis);
     variances.push_back(a.variance_m2);
     updating.push_back(p);
     result.associations.push_back(a);
@@ -452,6 +460,7 @@ SlamStepResult SlamTracker::Step(double t_s, std::span<const core::AnchorRanges>
       const Eigen::MatrixXd cross = state_.covariance().middleRows(p_offset, 2);
       const Eigen::Matrix2d P_pp = state_.covariance().block<2, 2>(p_offset, p_offset);
       Entry e;
+      e.innovation_scale = estimation::InnovationScale(static_cast<std::size_t>(options_.nis_window));
       e.va.id = next_discovered_id_++;
       e.va.anchor_index = anchor.anchor_index;
       e.va.origin = MapVaOrigin::kDiscovered;

@@ -178,17 +178,23 @@ TEST(SlamTracker, BlockedAnchorsDiscoveredVasNeedAStrongerAmplitude) {
   EXPECT_EQ(strong, strong_off) << "the paths' own amplitudes pass while the LOS is blocked";
 }
 
+// Options for a run with the first-order VAs of the floor plan known and no discovery.
+SlamOptions FirstOrderVasKnown() {
+  SlamOptions options;
+  options.prior_max_order = 1;
+  options.discovery.enabled = false;
+  return options;
+}
+
 // Per VA id, the smallest shift (0-14 cm in 0.5 cm steps) at which step 60 of the loop no longer
 // associates that VA (1 m if it always does), with the first-order VAs known. Shifted are the
 // reflections' ranges of both anchors, or with `shift_los` anchor 0's LOS range only.
 std::map<int, double> RejectionShifts(double gate_chi2, bool prior_visibility, bool reassociate, bool shift_los) {
   const auto plan = mint::testing::EmptySquareRoom();
   const auto vas = mint::testing::SquareRoomVas(plan, 1);
-  SlamOptions options;
-  options.prior_max_order = 1;
+  SlamOptions options = FirstOrderVasKnown();
   options.prior_visibility = prior_visibility;
   options.reassociate = reassociate;
-  options.discovery.enabled = false;
   options.no_visibility_model_gate_chi2 = gate_chi2;
   std::map<int, double> rejected_at_m;
   for (const auto& va : vas.all()) rejected_at_m[va.id] = 1.0;
@@ -240,14 +246,62 @@ TEST(SlamTracker, TheNoVisibilityModelGateIsTighterOnlyForVasWithoutAVisibilityR
   EXPECT_EQ(los_tight.at(los_id), los_wide.at(los_id));
 }
 
+// The range variance each VA's association reports at step 60 of the loop (first-order VAs
+// known), with the ranges of `erratic_va` off by +-`jump_m` from step 20 on, the sign
+// alternating from step to step (as for a VA between two wall offsets whose ranges come from
+// either, or a path merged with a neighbouring one now and then). A constant offset would not
+// do: the VA is in the state, and its position absorbs it.
+std::map<int, double> VariancesAtStep60(int nis_window, int erratic_va, double jump_m) {
+  const auto plan = mint::testing::EmptySquareRoom();
+  const auto vas = mint::testing::SquareRoomVas(plan, 1);
+  SlamOptions options = FirstOrderVasKnown();
+  options.nis_window = nis_window;
+  SlamTracker tracker(options, vas, plan, kSigma1M);
+  const auto samples = Loop();
+  tracker.Initialize(samples.front().t_s, samples.front().position_m);
+  core::Rng rng(8, 0);
+  SlamStepResult step;
+  for (std::size_t k = 1; k <= 60; ++k) {
+    auto ranges = MeasureRanges(vas, plan, samples[k].position_m, MeasurementModel{}, rng);
+    const auto& erratic = vas[erratic_va];
+    const double path_m = (erratic.position_m - samples[k].position_m).norm();
+    for (auto& r : ranges[static_cast<std::size_t>(erratic.anchor_index)].ranges) {
+      if (k >= 20 && std::abs(r.range_m - path_m) < 0.05) r.range_m += k % 2 == 0 ? jump_m : -jump_m;
+    }
+    step = tracker.Step(samples[k].t_s, ranges);
+  }
+  std::map<int, double> variance_m2;
+  for (const auto& a : step.associations) variance_m2[a.va_id] = a.variance_m2;
+  return variance_m2;
+}
+
+TEST(SlamTracker, AVaWhoseInnovationsExceedTheirVarianceIsWeightedDown) {
+  const auto plan = mint::testing::EmptySquareRoom();
+  const auto vas = mint::testing::SquareRoomVas(plan, 1);
+  const int erratic = vas.ForAnchor(0)[1];  // anchor 0's first wall VA (ForAnchor lists the anchor first)
+  ASSERT_EQ(vas[erratic].order, 1);
+  const auto scaled = VariancesAtStep60(20, erratic, 0.03);
+  const auto plain = VariancesAtStep60(0, erratic, 0.03);
+  ASSERT_TRUE(scaled.count(erratic) && plain.count(erratic)) << "the erratic VA is still associated at step 60";
+  // +-3 cm against a range std of 1 cm: the mean NIS is several times 1.
+  EXPECT_GT(scaled.at(erratic) / plain.at(erratic), 2.0);
+  int consistent = 0;
+  for (const auto& [id, variance_m2] : plain) {
+    if (id == erratic || !scaled.count(id)) continue;
+    ++consistent;
+    // A consistent VA's mean NIS over 20 updates stays below 2 (chi^2_20 / 20 > 2 with
+    // probability 0.005).
+    EXPECT_LT(scaled.at(id) / variance_m2, 2.0) << "VA " << id;
+  }
+  EXPECT_GE(consistent, 4);
+}
+
 // Whether the tracker associates a weak range near anchor 0's LOS at step 60 of the loop, after
 // 59 steps of normal ranges (the amplitude window forms after about 18 steps of 5 cm).
 bool AssociatesAWeakLosStandIn(double amplitude_gate_probability) {
   const auto plan = mint::testing::EmptySquareRoom();
   const auto vas = mint::testing::SquareRoomVas(plan, 1);
-  SlamOptions options;
-  options.prior_max_order = 1;
-  options.discovery.enabled = false;
+  SlamOptions options = FirstOrderVasKnown();
   options.amplitude_gate_probability = amplitude_gate_probability;
   const int los_id = vas[0].id;  // anchor 0 itself: a VA set lists each anchor before its VAs
   const auto step = RunToStep(options, vas, vas, 5, 60, [&](std::vector<core::AnchorRanges>& ranges, const Vec2& p_m) {
@@ -527,14 +581,16 @@ TEST(SlamTracker, ValidateNamesTheBadOption) {
   options.blocked_amplitude_probability = 0.6;
   options.los_reacquire_m = -0.1;
   options.no_visibility_model_gate_chi2 = -1.0;
+  options.nis_window = -1;
   options.discovery.group_size = 2;
   const auto problems = Validate(options);
-  ASSERT_EQ(problems.size(), 5u);
+  ASSERT_EQ(problems.size(), 6u);
   EXPECT_EQ(problems[0].rfind("cutoff_m", 0), 0u);
   EXPECT_EQ(problems[1].rfind("los_reacquire_m", 0), 0u);
   EXPECT_EQ(problems[2].rfind("no_visibility_model_gate_chi2", 0), 0u);
-  EXPECT_EQ(problems[3].rfind("blocked_amplitude_probability", 0), 0u);
-  EXPECT_EQ(problems[4].rfind("discovery.group_size", 0), 0u);
+  EXPECT_EQ(problems[3].rfind("nis_window", 0), 0u);
+  EXPECT_EQ(problems[4].rfind("blocked_amplitude_probability", 0), 0u);
+  EXPECT_EQ(problems[5].rfind("discovery.group_size", 0), 0u);
 }
 
 }  // namespace
