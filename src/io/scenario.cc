@@ -198,7 +198,7 @@ methods::slam::SlamOptions ReadSlam(YamlMap m, std::size_t walls) {
   o.shadow_cone_deg = m.NumberInRange("shadow_cone_deg", o.shadow_cone_deg, 0.0, 180.0, "deg");
   o.shadow_sigma_m = m.NumberInRange("shadow_sigma_m", o.shadow_sigma_m, 1e-9, kHuge, "m");
   o.los_reacquire_m = m.NumberInRange("los_reacquire_m", o.los_reacquire_m, 0.0, kHuge, "m");
-  o.nis_window = m.Integer("nis_window", o.nis_window, 0, 100000);
+  o.nis_window_updates = m.Integer("nis_window_updates", o.nis_window_updates, 0, 100000);
   o.recovery = ReadRecovery(m.OptionalMap("recovery"));
   m.RejectUnknownKeys();
   Check(o, m);

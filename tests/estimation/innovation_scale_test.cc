@@ -53,7 +53,7 @@ TEST(InnovationScale, SeparatesAConsistentFromABiasedSource) {
       biased_min = std::min(biased_min, biased.Factor());
     }
   }
-  // chi^2_20 / 20 exceeds 3 with probability 5e-6 per window; the biased source's mean NIS is
+  // chi^2_20 / 20 exceeds 3 with probability 7e-6 per window; the biased source's mean NIS is
   // 1 + 3^2 = 10 with a std of 1.4 over 20 innovations.
   EXPECT_LT(consistent_max, 3.0);
   EXPECT_GT(biased_min, 3.0);

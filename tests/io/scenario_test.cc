@@ -235,7 +235,7 @@ TEST(LoadScenario, ReadsTheSlamExamplesWithTheValuesTheyState) {
   EXPECT_DOUBLE_EQ(o.shadow_cone_deg, 0.0);
   EXPECT_DOUBLE_EQ(o.shadow_sigma_m, 0.05);
   EXPECT_DOUBLE_EQ(o.los_reacquire_m, 0.4);
-  EXPECT_EQ(o.nis_window, 20);
+  EXPECT_EQ(o.nis_window_updates, 20);
   EXPECT_TRUE(o.recovery.enabled);
   EXPECT_EQ(o.recovery.min_margin, 2);
   EXPECT_EQ(o.recovery.lost_steps, 3);
@@ -442,13 +442,13 @@ TEST_F(ScenarioFiles, ReadsTheSlamGateAndVarianceKeys) {
   const std::string path = OverrideSlam("gates.yaml",
                                          "slam:\n  innovation_gate_chi2: 6\n  no_visibility_model_gate_chi2: 2.5\n"
                                          "  amplitude_gate_probability: 0.01\n  blocked_amplitude_probability: 0.2\n"
-                                         "  nis_window: 7\n");
+                                         "  nis_window_updates: 7\n");
   const auto& slam = LoadScenario(path).mint.slam;
   EXPECT_DOUBLE_EQ(slam.innovation_gate_chi2, 6.0);
   EXPECT_DOUBLE_EQ(slam.no_visibility_model_gate_chi2, 2.5);
   EXPECT_DOUBLE_EQ(slam.amplitude_gate_probability, 0.01);
   EXPECT_DOUBLE_EQ(slam.blocked_amplitude_probability, 0.2);
-  EXPECT_EQ(slam.nis_window, 7);
+  EXPECT_EQ(slam.nis_window_updates, 7);
 }
 
 TEST_F(ScenarioFiles, NamesABadSlamGateWithItsPathAndLine) {

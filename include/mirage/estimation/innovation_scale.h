@@ -23,6 +23,10 @@ class InnovationScale {
   /// @param window the number of most recent innovations averaged (>= 1; 0 disables scaling).
   explicit InnovationScale(std::size_t window = 0) : window_(window) {}
 
+  /// Forgets the recorded innovations (e.g. after a track restart: they were taken along the
+  /// lost track).
+  void Reset() { nis_.clear(); }
+
   /// Records the NIS (nu^2 / S, >= 0) of one update.
   void Add(double nis) {
     if (window_ == 0) return;

@@ -48,7 +48,7 @@ std::vector<std::string> Validate(const SlamOptions& options) {
   if (!(options.no_visibility_model_gate_chi2 >= 0.0) || !std::isfinite(options.no_visibility_model_gate_chi2)) {
     problems.push_back("no_visibility_model_gate_chi2 must be >= 0");
   }
-  if (options.nis_window < 0) problems.push_back("nis_window must be >= 0");
+  if (options.nis_window_updates < 0) problems.push_back("nis_window_updates must be >= 0");
   if (!(options.amplitude_gate_probability >= 0.0 && options.amplitude_gate_probability <= 0.5)) {
     problems.push_back("amplitude_gate_probability must be in [0, 0.5]");
   }
@@ -131,7 +131,7 @@ void SlamTracker::Initialize(double t_s, const Vec2& p0_m) {
   for (const auto& va : known_vas_->all()) {
     if (va.order > options_.prior_max_order) continue;
     Entry e;
-    e.innovation_scale = estimation::InnovationScale(static_cast<std::size_t>(options_.nis_window));
+    e.innovation_scale = estimation::InnovationScale(static_cast<std::size_t>(options_.nis_window_updates));
     e.va.id = va.id;
     e.va.anchor_index = va.anchor_index;
     e.va.origin = va.order == 0 ? MapVaOrigin::kAnchor : MapVaOrigin::kPrior;
@@ -289,9 +289,9 @@ std::vector<SlamTracker::Pairing> SlamTracker::Associate(const Reference& refere
       p.anchor_index = anchor.anchor_index;
       p.map_index = candidates[k];
       p.measurement = &anchor.ranges[static_cast<std::size_t>(assignment[k])];
-      const double nu_m = p.measurement->range_m - expected_m[k];
-      p.reacquired = std::abs(nu_m) >= options_.cutoff_m;
-      p.nis = nu_m * nu_m / gate_variance_m2[k];
+      p.innovation_m = p.measurement->range_m - expected_m[k];
+      p.reacquired = std::abs(p.innovation_m) >= options_.cutoff_m;
+      p.predicted_variance_m2 = gate_variance_m2[k] - CurrentVariance(map_[candidates[k]].va.id);
       for (std::size_t o = 0; o < candidates.size(); ++o) {
         if (o != k && std::abs(expected_m[o] - expected_m[k]) < options_.variance.overlap_distance_m) {
           p.overlapped = true;
@@ -422,11 +422,13 @@ SlamStepResult SlamTracker::Step(double t_s, std::span<const core::AnchorRanges>
     // Judged after this step's sample entered the window: a VA leaves (and rejoins) the update
     // as soon as its own estimate says so.
     if (Filtered(p.map_index)) continue;
-    if (p.shadowed) a.variance_m2 += options_.shadow_sigma_m * options_.shadow_sigma_m;
-    // Weighted by the VA's own record of innovations, before this one enters it.
+    // Weighted by the VA's own record of innovations (nis_window_updates), before this one
+    // enters it; its NIS against the range variance of this update.
     estimation::InnovationScale& scale = map_[p.map_index].innovation_scale;
+    const double scale_nis = p.innovation_m * p.innovation_m / (p.predicted_variance_m2 + a.variance_m2);
     a.variance_m2 *= scale.Factor();
-    scale.Add(p.nis);
+    scale.Add(scale_nis);
+    if (p.shadowed) a.variance_m2 += options_.shadow_sigma_m * options_.shadow_sigma_m;
     variances.push_back(a.variance_m2);
     updating.push_back(p);
     result.associations.push_back(a);
@@ -460,7 +462,7 @@ SlamStepResult SlamTracker::Step(double t_s, std::span<const core::AnchorRanges>
       const Eigen::MatrixXd cross = state_.covariance().middleRows(p_offset, 2);
       const Eigen::Matrix2d P_pp = state_.covariance().block<2, 2>(p_offset, p_offset);
       Entry e;
-      e.innovation_scale = estimation::InnovationScale(static_cast<std::size_t>(options_.nis_window));
+      e.innovation_scale = estimation::InnovationScale(static_cast<std::size_t>(options_.nis_window_updates));
       e.va.id = next_discovered_id_++;
       e.va.anchor_index = anchor.anchor_index;
       e.va.origin = MapVaOrigin::kDiscovered;
@@ -587,6 +589,7 @@ bool SlamTracker::RecoverTrack(double t_s, std::span<const core::AnchorRanges> m
   estimation::CovarianceOps::Reinitialize(state_, {BlockKind::kVelocity, 0}, restart->velocity_mps,
                                           Eigen::Matrix2d::Identity() * sv2);
   discovery_.Reset();
+  for (auto& e : map_) e.innovation_scale.Reset();  // taken along the lost track
   return true;
 }
 

@@ -251,11 +251,11 @@ TEST(SlamTracker, TheNoVisibilityModelGateIsTighterOnlyForVasWithoutAVisibilityR
 // alternating from step to step (as for a VA between two wall offsets whose ranges come from
 // either, or a path merged with a neighbouring one now and then). A constant offset would not
 // do: the VA is in the state, and its position absorbs it.
-std::map<int, double> VariancesAtStep60(int nis_window, int erratic_va, double jump_m) {
+std::map<int, double> VariancesAtStep60(int nis_window_updates, int erratic_va, double jump_m) {
   const auto plan = mint::testing::EmptySquareRoom();
   const auto vas = mint::testing::SquareRoomVas(plan, 1);
   SlamOptions options = FirstOrderVasKnown();
-  options.nis_window = nis_window;
+  options.nis_window_updates = nis_window_updates;
   SlamTracker tracker(options, vas, plan, kSigma1M);
   const auto samples = Loop();
   tracker.Initialize(samples.front().t_s, samples.front().position_m);
@@ -581,14 +581,14 @@ TEST(SlamTracker, ValidateNamesTheBadOption) {
   options.blocked_amplitude_probability = 0.6;
   options.los_reacquire_m = -0.1;
   options.no_visibility_model_gate_chi2 = -1.0;
-  options.nis_window = -1;
+  options.nis_window_updates = -1;
   options.discovery.group_size = 2;
   const auto problems = Validate(options);
   ASSERT_EQ(problems.size(), 6u);
   EXPECT_EQ(problems[0].rfind("cutoff_m", 0), 0u);
   EXPECT_EQ(problems[1].rfind("los_reacquire_m", 0), 0u);
   EXPECT_EQ(problems[2].rfind("no_visibility_model_gate_chi2", 0), 0u);
-  EXPECT_EQ(problems[3].rfind("nis_window", 0), 0u);
+  EXPECT_EQ(problems[3].rfind("nis_window_updates", 0), 0u);
   EXPECT_EQ(problems[4].rfind("blocked_amplitude_probability", 0), 0u);
   EXPECT_EQ(problems[5].rfind("discovery.group_size", 0), 0u);
 }

@@ -155,18 +155,21 @@ struct SlamOptions {
   /// shadowed runs, and measured 0.3-0.6 m all help; at 1 m other strong paths were taken for
   /// the LOS (docs/methods/slam.md).
   double los_reacquire_m = 0.4;
-  /// Innovation-based range variance (mirage; 0 = off, >= 0): each VA's range variance in the
-  /// update (the anchors' LOS included) is multiplied by the mean normalised innovation squared
-  /// (nu^2 / S, at the association) of its last nis_window updates when that mean exceeds 1 and
-  /// at least 5 were recorded (estimation/innovation_scale; the gates keep the unscaled
-  /// variance). Why: the variance estimator's range std follows the SINR, but some paths'
-  /// ranges are biased beyond it: in the seminar room a path 9 cm from a second-order one is
-  /// often extracted as one merged peak between the two, and a VA fitted between two wall
-  /// offsets (a window and its pier, 2.8 cm apart) gets ranges of either. Such a VA's own
-  /// innovations show it, and its updates are weighted down by that excess. 20: over seeds 1-9
-  /// windows of 10 and 40 gave the same (docs/methods/slam.md). Applies to known and discovered
-  /// VAs alike: the known-VA run gains more (p90 2.86 / 2.84 -> 2.73 / 2.72 cm on average).
-  int nis_window = 20;
+  /// Innovation-scaled range variance (mirage; 0 = off, >= 0, in updates): each VA's range
+  /// variance in the update is multiplied by the mean normalised innovation squared of its last
+  /// nis_window_updates updates when that mean exceeds 1 and at least 5 were recorded
+  /// (estimation/innovation_scale; NIS = nu^2 / (H P H^T + R) with R this update's variance
+  /// before scaling; the gates keep the unscaled variance; a track restart clears the records).
+  /// Why: the variance estimator's range std follows the SINR, but some paths' ranges are off
+  /// by more: in the seminar room a path 9 cm from a second-order one is often extracted as one
+  /// merged peak between the two, and a VA fitted between two wall offsets (a window and its
+  /// pier, 2.8 cm apart) gets ranges of either. Such a VA's own innovations show it, and its
+  /// updates are weighted down by that excess. It applies to every map entry, known or
+  /// discovered; with reassociate the anchors' LOS is in effect not scaled (its stage-2
+  /// innovation is what its own stage-1 update left). Seeds 1-9, mean p90: anchors only 3.49 /
+  /// 3.43 -> 3.45 / 3.37 cm, the known-VA run 2.86 / 2.84 -> 2.70 / 2.69 cm; windows of 10 and
+  /// 40 gave about the same (docs/methods/slam.md).
+  int nis_window_updates = 20;
   /// Covariance update of the EKF (mirage): the standard form P - K H P halves the O(n^2 m)
   /// cost that dominates a step with tens of VAs in the state (bench/methods/slam_step_bench.cc
   /// measures both); the Joseph form as in MINT is the alternative.
@@ -210,7 +213,7 @@ struct SlamAssociation {
   int anchor_index = 0;
   int va_id = 0;
   double measured_range_m = 0.0;
-  double variance_m2 = 0.0;
+  double variance_m2 = 0.0;  ///< the range variance of the update (scaled: nis_window_updates)
   std::optional<double> sinr;
 };
 
@@ -261,7 +264,8 @@ class SlamTracker {
     bool overlapped = false;
     bool shadowed = false;  // in the shadow cone of a blocked LOS
     bool reacquired = false;  // a missed LOS taken outside cutoff_m (los_reacquire_m)
-    double nis = 0.0;  // normalised innovation squared nu^2 / S at the association
+    double innovation_m = 0.0;            // measured minus expected range at the association
+    double predicted_variance_m2 = 0.0;  // the agent's and the VA's part of its variance, H P H^T
   };
   struct Reference {
     Vec2 position_m = Vec2::Zero();
@@ -316,7 +320,7 @@ class SlamTracker {
     /// blocked_amplitude_probability). Without reassociate it is set from the joint association,
     /// where only the recovery's watch window uses it (through last_los_miss_step_).
     bool los_missed = false;
-    /// The mean NIS of the last updates (SlamOptions::nis_window): the factor on the range
+    /// The mean NIS of the last updates (SlamOptions::nis_window_updates): the factor on the range
     /// variance of the next one.
     estimation::InnovationScale innovation_scale;
   };
