@@ -130,8 +130,7 @@ void SlamTracker::Initialize(double t_s, const Vec2& p0_m) {
   next_discovered_id_ = kFirstDiscoveredVaId;
   for (const auto& va : known_vas_->all()) {
     if (va.order > options_.prior_max_order) continue;
-    Entry e;
-    e.innovation_scale = estimation::InnovationScale(static_cast<std::size_t>(options_.nis_window_updates));
+    Entry e = NewEntry();
     e.va.id = va.id;
     e.va.anchor_index = va.anchor_index;
     e.va.origin = va.order == 0 ? MapVaOrigin::kAnchor : MapVaOrigin::kPrior;
@@ -161,6 +160,12 @@ double SlamTracker::CurrentVariance(int va_id) const {
 
 bool SlamTracker::HasVisibility(std::size_t map_index) const {
   return map_[map_index].va.origin == MapVaOrigin::kPrior && ScoresFloorPlanVas(options_, *plan_);
+}
+
+SlamTracker::Entry SlamTracker::NewEntry() const {
+  Entry e;
+  e.innovation_scale = estimation::InnovationScale(static_cast<std::size_t>(options_.nis_window_updates));
+  return e;
 }
 
 bool SlamTracker::LacksVisibilityModel(std::size_t map_index) const {
@@ -207,7 +212,8 @@ std::vector<SlamTracker::Pairing> SlamTracker::Associate(const Reference& refere
   for (const auto& anchor : measurements) {
     std::vector<std::size_t> candidates;
     std::vector<double> expected_m;
-    std::vector<double> gate_variance_m2;
+    std::vector<double> predicted_variance_m2;  // the agent's and the VA's part, H P H^T
+    std::vector<double> gate_variance_m2;       // plus the VA's range variance
     for (const std::size_t i : Candidates(anchor.anchor_index, at_m, los_only)) {
       const auto prediction = estimation::PredictVaRange(at_m, VaPosition(i));
       if (!prediction) continue;
@@ -226,6 +232,7 @@ std::vector<SlamTracker::Pairing> SlamTracker::Associate(const Reference& refere
       } else {
         variance_m2 += (prediction->J_range_va * map_[i].va.covariance_m2 * prediction->J_range_va.transpose())(0, 0);
       }
+      predicted_variance_m2.push_back(variance_m2);
       gate_variance_m2.push_back(variance_m2 + CurrentVariance(map_[i].va.id));
     }
     // Per candidate, the amplitude gate's probability threshold and its law where there is one,
@@ -291,7 +298,7 @@ std::vector<SlamTracker::Pairing> SlamTracker::Associate(const Reference& refere
       p.measurement = &anchor.ranges[static_cast<std::size_t>(assignment[k])];
       p.innovation_m = p.measurement->range_m - expected_m[k];
       p.reacquired = std::abs(p.innovation_m) >= options_.cutoff_m;
-      p.predicted_variance_m2 = gate_variance_m2[k] - CurrentVariance(map_[candidates[k]].va.id);
+      p.predicted_variance_m2 = predicted_variance_m2[k];
       for (std::size_t o = 0; o < candidates.size(); ++o) {
         if (o != k && std::abs(expected_m[o] - expected_m[k]) < options_.variance.overlap_distance_m) {
           p.overlapped = true;
@@ -461,8 +468,7 @@ SlamStepResult SlamTracker::Step(double t_s, std::span<const core::AnchorRanges>
       const int p_offset = state_.layout().At({BlockKind::kPosition, 0}).offset;
       const Eigen::MatrixXd cross = state_.covariance().middleRows(p_offset, 2);
       const Eigen::Matrix2d P_pp = state_.covariance().block<2, 2>(p_offset, p_offset);
-      Entry e;
-      e.innovation_scale = estimation::InnovationScale(static_cast<std::size_t>(options_.nis_window_updates));
+      Entry e = NewEntry();
       e.va.id = next_discovered_id_++;
       e.va.anchor_index = anchor.anchor_index;
       e.va.origin = MapVaOrigin::kDiscovered;
