@@ -323,10 +323,10 @@ class SlamTracker {
     /// The mean NIS of the last updates (SlamOptions::nis_window_updates): the factor on the range
     /// variance of the next one.
     estimation::InnovationScale innovation_scale;
-  };  // A map entry with the per-entry state the options configure (the innovation scale's window);
+  };
+  // A map entry with the per-entry state the options configure (the innovation scale's window);
   // every entry is made here.
   [[nodiscard]] Entry NewEntry() const;
-
 
   SlamOptions options_;
   const geometry::VirtualAnchorSet* known_vas_;
