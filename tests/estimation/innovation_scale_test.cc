@@ -5,6 +5,8 @@
 #include "mirage/estimation/innovation_scale.h"
 
 #include <cmath>
+#include <limits>
+#include <stdexcept>
 
 #include <gtest/gtest.h>
 
@@ -31,6 +33,19 @@ TEST(InnovationScale, AveragesOnlyTheLastWindow) {
   EXPECT_DOUBLE_EQ(scale.Factor(), 3.0) << "the five old innovations have left the window";
   scale.Add(8.0);
   EXPECT_DOUBLE_EQ(scale.Factor(), (4 * 3.0 + 8.0) / 5.0);
+}
+
+TEST(InnovationScale, RejectsANisThatIsNotANonNegativeNumber) {
+  // Without the check a NaN would make the window's mean NaN and the factor silently 1.
+  InnovationScale scale(20);
+  for (int i = 0; i < 10; ++i) scale.Add(9.0);
+  EXPECT_THROW(scale.Add(std::numeric_limits<double>::quiet_NaN()), std::invalid_argument);
+  EXPECT_THROW(scale.Add(std::numeric_limits<double>::infinity()), std::invalid_argument);
+  EXPECT_THROW(scale.Add(-1.0), std::invalid_argument);
+  EXPECT_DOUBLE_EQ(scale.Factor(), 9.0) << "a rejected NIS is not recorded";
+  InnovationScale off(0);
+  EXPECT_THROW(off.Add(std::numeric_limits<double>::quiet_NaN()), std::invalid_argument)
+      << "checked even with the scaling off";
 }
 
 TEST(InnovationScale, WindowZeroIsOff) {

@@ -8,9 +8,12 @@
 // 17(5); Mohamed and Schwarz 1999, J. Geodesy 73).
 #pragma once
 
+#include <cmath>
 #include <cstddef>
 #include <deque>
 #include <numeric>
+#include <stdexcept>
+#include <string>
 
 namespace mirage::estimation {
 
@@ -27,8 +30,13 @@ class InnovationScale {
   /// lost track).
   void Reset() { nis_.clear(); }
 
-  /// Records the NIS (nu^2 / S, >= 0) of one update.
+  /// Records the NIS (nu^2 / S, >= 0) of one update. A NaN, infinite or negative NIS (a zero or
+  /// negative S upstream) throws std::invalid_argument: kept, it would make the mean NaN, and
+  /// Factor() would silently return 1 for the whole window.
   void Add(double nis) {
+    if (!std::isfinite(nis) || nis < 0.0) {
+      throw std::invalid_argument("InnovationScale::Add: the NIS must be finite and >= 0, got " + std::to_string(nis));
+    }
     if (window_ == 0) return;
     nis_.push_back(nis);
     if (nis_.size() > window_) nis_.pop_front();

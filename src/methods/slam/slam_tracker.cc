@@ -2,7 +2,7 @@
 #include "mirage/methods/slam/slam_tracker.h"
 
 #include <algorithm>
-#include <array>
+#include <cassert>
 #include <cmath>
 #include <limits>
 #include <unordered_set>
@@ -67,25 +67,6 @@ namespace {
 // VAs without a visibility region the map needs before the track-loss recovery runs without the
 // floor plan (below).
 constexpr std::size_t kRecoveryMinVas = 2;
-
-// The agent's position and velocity with their marginal covariance, as a state of its own.
-estimation::State AgentMarginal(const estimation::State& state) {
-  estimation::StateLayout layout;
-  layout.Append({BlockKind::kPosition, 0}, 2);
-  layout.Append({BlockKind::kVelocity, 0}, 2);
-  const int p = state.layout().At({BlockKind::kPosition, 0}).offset;
-  const int v = state.layout().At({BlockKind::kVelocity, 0}).offset;
-  const std::array<int, 4> index{p, p + 1, v, v + 1};
-  Eigen::VectorXd mean(4);
-  Eigen::MatrixXd covariance(4, 4);
-  for (std::size_t i = 0; i < 4; ++i) {
-    mean(static_cast<Eigen::Index>(i)) = state.mean()(index[i]);
-    for (std::size_t j = 0; j < 4; ++j) {
-      covariance(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = state.covariance()(index[i], index[j]);
-    }
-  }
-  return estimation::State(std::move(layout), std::move(mean), std::move(covariance), state.t_s());
-}
 
 // The map's prior VAs come from a floor plan and have ray-traced visibility regions: they are
 // candidates only where visible, and score in the track-loss recovery only there.
@@ -215,23 +196,19 @@ std::vector<SlamTracker::Pairing> SlamTracker::Associate(const Reference& refere
     std::vector<double> predicted_variance_m2;  // the agent's and the VA's part, H P H^T
     std::vector<double> gate_variance_m2;       // plus the VA's range variance
     for (const std::size_t i : Candidates(anchor.anchor_index, at_m, los_only)) {
-      const auto prediction = estimation::PredictVaRange(at_m, VaPosition(i));
+      // Agent and VA both from the joint state at the reference: with stage 1, a discovered VA
+      // correlated with the agent has moved with it, and mixing the agent's posterior with the
+      // VA's prior blocks can make H P H^T negative.
+      const VaAtReference va = VaAt(reference, i);
+      const auto prediction = estimation::PredictVaRange(at_m, va.mean_m);
       if (!prediction) continue;
       candidates.push_back(i);
       expected_m.push_back(prediction->range_m);
       // Innovation variance J_p P_pp J_p^T + J_v P_vv J_v^T + 2 J_p P_pv J_v^T + R (Eq. 16 rows).
-      double variance_m2 = (prediction->J_range_p * reference.covariance_m2 * prediction->J_range_p.transpose())(0, 0);
-      if (InState(i)) {
-        const BlockKey key{BlockKind::kVirtualAnchor, map_[i].va.id};
-        const int va_offset = state_.layout().At(key).offset;
-        const int p_offset = state_.layout().At({BlockKind::kPosition, 0}).offset;
-        const Eigen::Matrix2d P_vv = state_.covariance().block<2, 2>(va_offset, va_offset);
-        const Eigen::Matrix2d P_pv = state_.covariance().block<2, 2>(p_offset, va_offset);
-        variance_m2 += (prediction->J_range_va * P_vv * prediction->J_range_va.transpose())(0, 0) +
-                       2.0 * (prediction->J_range_p * P_pv * prediction->J_range_va.transpose())(0, 0);
-      } else {
-        variance_m2 += (prediction->J_range_va * map_[i].va.covariance_m2 * prediction->J_range_va.transpose())(0, 0);
-      }
+      const double variance_m2 =
+          (prediction->J_range_p * reference.covariance_m2 * prediction->J_range_p.transpose())(0, 0) +
+          (prediction->J_range_va * va.covariance_m2 * prediction->J_range_va.transpose())(0, 0) +
+          2.0 * (prediction->J_range_p * va.cross_m2 * prediction->J_range_va.transpose())(0, 0);
       predicted_variance_m2.push_back(variance_m2);
       gate_variance_m2.push_back(variance_m2 + CurrentVariance(map_[i].va.id));
     }
@@ -335,8 +312,46 @@ void SlamTracker::AddToState(std::size_t map_index) {
                                      e.va.covariance_m2);
 }
 
-estimation::UpdateResult SlamTracker::Update(estimation::State& state, const std::vector<Pairing>& pairings,
+SlamTracker::VaAtReference SlamTracker::VaAt(const Reference& reference, std::size_t map_index) const {
+  VaAtReference out;
+  if (!InState(map_index)) {  // independent of the agent: stage 1 does not move it
+    out.mean_m = map_[map_index].prior_m;
+    out.covariance_m2 = map_[map_index].va.covariance_m2;
+    return out;
+  }
+  const BlockKey key{BlockKind::kVirtualAnchor, map_[map_index].va.id};
+  const int v = state_.layout().At(key).offset;
+  const int p = state_.layout().At({BlockKind::kPosition, 0}).offset;
+  if (reference.stage_one) {
+    out.mean_m = reference.stage_one->Mean(state_, v);
+    out.covariance_m2 = reference.stage_one->Covariance(state_, v, v);
+    out.cross_m2 = reference.stage_one->Covariance(state_, p, v);
+  } else {
+    out.mean_m = state_.Mean(key);
+    out.covariance_m2 = state_.covariance().block<2, 2>(v, v);
+    out.cross_m2 = state_.covariance().block<2, 2>(p, v);
+  }
+  return out;
+}
+
+SlamTracker::Reference SlamTracker::StageOne(const std::vector<Pairing>& los,
                                              const std::vector<double>& variances_m2) const {
+  const int p = state_.layout().At({BlockKind::kPosition, 0}).offset;
+  Reference reference{state_.Mean({BlockKind::kPosition, 0}), state_.Covariance({BlockKind::kPosition, 0}), std::nullopt};
+  // Only the position columns of the rows are non-zero: the anchors are not in the state.
+  assert(std::none_of(los.begin(), los.end(), [&](const Pairing& q) { return InState(q.map_index); }));
+  const Rows rows = Linearize(state_, los, variances_m2);
+  reference.stage_one = estimation::BlockUpdate::Make(state_, p, Eigen::MatrixXd(rows.H).middleCols(p, 2),
+                                                      rows.innovation_m, rows.R_m2);
+  if (reference.stage_one) {
+    reference.position_m = reference.stage_one->Mean(state_, p);
+    reference.covariance_m2 = reference.stage_one->Covariance(state_, p, p);
+  }
+  return reference;
+}
+
+SlamTracker::Rows SlamTracker::Linearize(const estimation::State& state, const std::vector<Pairing>& pairings,
+                                         const std::vector<double>& variances_m2) const {
   const Vec2 prior_m = state.Mean({BlockKind::kPosition, 0});
   const int position_offset = state.layout().At({BlockKind::kPosition, 0}).offset;
   const auto m = static_cast<Eigen::Index>(pairings.size());
@@ -361,17 +376,26 @@ estimation::UpdateResult SlamTracker::Update(estimation::State& state, const std
     R(rows, rows) = variances_m2[k];
     ++rows;
   }
-  Eigen::SparseMatrix<double, Eigen::RowMajor> H(rows, state.dimension());
-  H.setFromTriplets(entries.begin(), entries.end());
+  Rows out;
+  out.H.resize(rows, state.dimension());
+  out.H.setFromTriplets(entries.begin(), entries.end());
+  out.innovation_m = innovation.head(rows);
+  out.R_m2 = R.topLeftCorner(rows, rows);
+  return out;
+}
+
+estimation::UpdateResult SlamTracker::Update(estimation::State& state, const std::vector<Pairing>& pairings,
+                                             const std::vector<double>& variances_m2) const {
+  const Rows rows = Linearize(state, pairings, variances_m2);
   return estimation::EkfUpdate(
-      state, H, innovation.head(rows), R.topLeftCorner(rows, rows),
+      state, rows.H, rows.innovation_m, rows.R_m2,
       options_.joseph_update ? estimation::CovarianceForm::kJoseph : estimation::CovarianceForm::kStandard);
 }
 
 SlamStepResult SlamTracker::Step(double t_s, std::span<const core::AnchorRanges> measurements) {
   estimation::PropagateConstantVelocity(state_, 0, t_s, options_.motion);
   SlamStepResult result;
-  Reference reference{state_.Mean({BlockKind::kPosition, 0}), state_.Covariance({BlockKind::kPosition, 0})};
+  Reference reference{state_.Mean({BlockKind::kPosition, 0}), state_.Covariance({BlockKind::kPosition, 0}), std::nullopt};
   std::vector<Vec2> blocked_m;  // the anchors whose LOS found no range at this step
 
   if (options_.reassociate) {
@@ -385,12 +409,7 @@ SlamStepResult SlamTracker::Step(double t_s, std::span<const core::AnchorRanges>
     if (!los.empty()) {
       std::vector<double> variances;
       for (const auto& p : los) variances.push_back(CurrentVariance(map_[p.map_index].va.id));
-      // The anchors are not in the state, so the LOS rows touch only the agent's columns and
-      // updating the agent's marginal alone is exact, at a fraction of the cost of a copy.
-      estimation::State trial = AgentMarginal(state_);
-      if (Update(trial, los, variances).applied) {
-        reference = {trial.Mean({BlockKind::kPosition, 0}), trial.Covariance({BlockKind::kPosition, 0})};
-      }
+      reference = StageOne(los, variances);
     }
   }
 

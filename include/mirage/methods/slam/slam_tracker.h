@@ -39,8 +39,10 @@
 #include <vector>
 
 #include <Eigen/Core>
+#include <Eigen/SparseCore>
 
 #include "mirage/core/measurements.h"
+#include "mirage/estimation/block_update.h"
 #include "mirage/estimation/ekf_update.h"
 #include "mirage/estimation/gates/rician_gate.h"
 #include "mirage/estimation/innovation_scale.h"
@@ -267,9 +269,25 @@ class SlamTracker {
     double innovation_m = 0.0;            // measured minus expected range at the association
     double predicted_variance_m2 = 0.0;  // the agent's and the VA's part of its variance, H P H^T
   };
+  // Where stage 2 associates: the joint state after stage 1's LOS update, whose rows touch only
+  // the agent position (the anchors are not in the state). Without stage 1 (or when it had no
+  // rows), the prior.
   struct Reference {
-    Vec2 position_m = Vec2::Zero();
+    Vec2 position_m = Vec2::Zero();  // the agent's mean
     Eigen::Matrix2d covariance_m2 = Eigen::Matrix2d::Zero();
+    std::optional<estimation::BlockUpdate> stage_one;  // the update, for the VAs' blocks
+  };
+  // A VA's mean, covariance and cross-covariance with the agent position at the reference.
+  struct VaAtReference {
+    Vec2 mean_m = Vec2::Zero();
+    Eigen::Matrix2d covariance_m2 = Eigen::Matrix2d::Zero();  // P_vv'
+    Eigen::Matrix2d cross_m2 = Eigen::Matrix2d::Zero();       // P_pv' (zero for a VA not in the state)
+  };
+  // The linearised rows of an update (Leitinger Eq. 16): H, innovation and R.
+  struct Rows {
+    Eigen::SparseMatrix<double, Eigen::RowMajor> H;
+    Eigen::VectorXd innovation_m;
+    Eigen::MatrixXd R_m2;
   };
   [[nodiscard]] Vec2 VaPosition(std::size_t map_index) const;
   [[nodiscard]] bool InState(std::size_t map_index) const;
@@ -286,8 +304,14 @@ class SlamTracker {
   [[nodiscard]] std::vector<Pairing> Associate(const Reference& reference,
                                                std::span<const core::AnchorRanges> measurements, bool los_only,
                                                double gate) const;
+  [[nodiscard]] VaAtReference VaAt(const Reference& reference, std::size_t map_index) const;
+  [[nodiscard]] Rows Linearize(const estimation::State& state, const std::vector<Pairing>& pairings,
+                               const std::vector<double>& variances_m2) const;
   estimation::UpdateResult Update(estimation::State& state, const std::vector<Pairing>& pairings,
                                   const std::vector<double>& variances_m2) const;
+  // Stage 1's reference: the joint update with the anchors' LOS pairings (Reference), or the
+  // prior when there are none or S is not positive definite.
+  [[nodiscard]] Reference StageOne(const std::vector<Pairing>& los, const std::vector<double>& variances_m2) const;
   void AddToState(std::size_t map_index);
   // Marks the anchors without an unfiltered LOS pairing among `pairings` (Entry::los_missed): the
   // pairings of stage 1, or of the joint association without reassociate. Remembers the step of
