@@ -442,13 +442,14 @@ TEST_F(ScenarioFiles, ReadsTheSlamGateAndVarianceKeys) {
   const std::string path = OverrideSlam("gates.yaml",
                                          "slam:\n  innovation_gate_chi2: 6\n  no_visibility_model_gate_chi2: 2.5\n"
                                          "  amplitude_gate_probability: 0.01\n  blocked_amplitude_probability: 0.2\n"
-                                         "  nis_window_updates: 7\n");
+                                         "  nis_window_updates: 7\n  discovered_va_walk_m_per_sqrt_s: 0.004\n");
   const auto& slam = LoadScenario(path).mint.slam;
   EXPECT_DOUBLE_EQ(slam.innovation_gate_chi2, 6.0);
   EXPECT_DOUBLE_EQ(slam.no_visibility_model_gate_chi2, 2.5);
   EXPECT_DOUBLE_EQ(slam.amplitude_gate_probability, 0.01);
   EXPECT_DOUBLE_EQ(slam.blocked_amplitude_probability, 0.2);
   EXPECT_EQ(slam.nis_window_updates, 7);
+  EXPECT_DOUBLE_EQ(slam.discovered_va_walk_m_per_sqrt_s, 0.004);
 }
 
 TEST_F(ScenarioFiles, NamesABadSlamGateWithItsPathAndLine) {

@@ -49,6 +49,9 @@ std::vector<std::string> Validate(const SlamOptions& options) {
     problems.push_back("no_visibility_model_gate_chi2 must be >= 0");
   }
   if (options.nis_window_updates < 0) problems.push_back("nis_window_updates must be >= 0");
+  if (!(options.discovered_va_walk_m_per_sqrt_s >= 0.0) || !std::isfinite(options.discovered_va_walk_m_per_sqrt_s)) {
+    problems.push_back("discovered_va_walk_m_per_sqrt_s must be >= 0");
+  }
   if (!(options.amplitude_gate_probability >= 0.0 && options.amplitude_gate_probability <= 0.5)) {
     problems.push_back("amplitude_gate_probability must be in [0, 0.5]");
   }
@@ -384,6 +387,17 @@ SlamTracker::Rows SlamTracker::Linearize(const estimation::State& state, const s
   return out;
 }
 
+void SlamTracker::WalkDiscoveredVas(double dt_s) {
+  const double q = options_.discovered_va_walk_m_per_sqrt_s;
+  if (q <= 0.0 || dt_s <= 0.0) return;
+  const Eigen::Matrix2d Q = Eigen::Matrix2d::Identity() * q * q * dt_s;
+  for (std::size_t i = 0; i < map_.size(); ++i) {
+    if (map_[i].va.origin != MapVaOrigin::kDiscovered || !InState(i)) continue;
+    const int offset = state_.layout().At({BlockKind::kVirtualAnchor, map_[i].va.id}).offset;
+    estimation::CovarianceOps::PropagateBlock(state_, offset, Eigen::Matrix2d::Identity(), Q, state_.t_s());
+  }
+}
+
 estimation::UpdateResult SlamTracker::Update(estimation::State& state, const std::vector<Pairing>& pairings,
                                              const std::vector<double>& variances_m2) const {
   const Rows rows = Linearize(state, pairings, variances_m2);
@@ -393,7 +407,9 @@ estimation::UpdateResult SlamTracker::Update(estimation::State& state, const std
 }
 
 SlamStepResult SlamTracker::Step(double t_s, std::span<const core::AnchorRanges> measurements) {
+  const double dt_s = t_s - state_.t_s();
   estimation::PropagateConstantVelocity(state_, 0, t_s, options_.motion);
+  WalkDiscoveredVas(dt_s);
   SlamStepResult result;
   Reference reference{state_.Mean({BlockKind::kPosition, 0}), state_.Covariance({BlockKind::kPosition, 0}), std::nullopt};
   std::vector<Vec2> blocked_m;  // the anchors whose LOS found no range at this step

@@ -99,6 +99,49 @@ TEST(SlamTracker, DiscoversFirstOrderVasFromTheAnchorsAloneOnCleanRanges) {
   EXPECT_GE(near_truth, discovered - 1) << "at most one discovered VA far from every true VA";
 }
 
+// Runs the loop with discovery, then one step without any range: the prediction alone, so the
+// change of each VA block is the random walk's. Returns the largest deviation of a discovered
+// VA's covariance change from q^2 dt I, and the number of discovered VAs in the state.
+std::pair<double, int> WalkDeviation(double q_m_per_sqrt_s) {
+  const auto plan = mint::testing::EmptySquareRoom();
+  const auto anchors_only = mint::testing::SquareRoomVas(plan, 0);
+  const auto truth = mint::testing::SquareRoomVas(plan, 1);
+  SlamOptions options;
+  options.prior_visibility = false;
+  options.discovered_va_walk_m_per_sqrt_s = q_m_per_sqrt_s;
+  core::Rng rng(2, 0);
+  const auto samples = Loop();
+  SlamTracker tracker(options, anchors_only, plan, kSigma1M);
+  tracker.Initialize(samples.front().t_s, samples.front().position_m);
+  for (std::size_t k = 1; k < samples.size(); ++k) {
+    (void)tracker.Step(samples[k].t_s, MeasureRanges(truth, plan, samples[k].position_m, MeasurementModel{}, rng));
+  }
+  const estimation::State before = tracker.state();
+  const double dt_s = 0.3;
+  (void)tracker.Step(before.t_s() + dt_s, {});
+  const estimation::State& after = tracker.state();
+  double deviation = 0.0;
+  int vas = 0;
+  for (const auto& block : before.layout().blocks()) {
+    if (block.key.kind != estimation::BlockKind::kVirtualAnchor) continue;
+    ++vas;
+    const Eigen::Matrix2d change = after.Covariance(block.key) - before.Covariance(block.key);
+    const Eigen::Matrix2d expected = Eigen::Matrix2d::Identity() * q_m_per_sqrt_s * q_m_per_sqrt_s * dt_s;
+    deviation = std::max(deviation, (change - expected).cwiseAbs().maxCoeff());
+    EXPECT_TRUE(after.Mean(block.key).isApprox(before.Mean(block.key))) << "a walk has zero mean";
+  }
+  return {deviation, vas};
+}
+
+TEST(SlamTracker, DiscoveredVasWalkByTheirRandomWalkOnlyWhenItIsOn) {
+  const auto [off_deviation, off_vas] = WalkDeviation(0.0);
+  const auto [on_deviation, on_vas] = WalkDeviation(0.01);
+  ASSERT_GE(on_vas, 3) << "the loop discovers VAs";
+  ASSERT_GE(off_vas, 3);
+  EXPECT_LT(off_deviation, 1e-15);
+  EXPECT_LT(on_deviation, 1e-15) << "each discovered VA gains (0.01 m)^2 / s x 0.3 s";
+}
+
 TEST(SlamTracker, WithoutDiscoveryTheMapHoldsOnlyTheAnchors) {
   const auto plan = mint::testing::EmptySquareRoom();
   const auto anchors_only = mint::testing::SquareRoomVas(plan, 0);
@@ -582,15 +625,17 @@ TEST(SlamTracker, ValidateNamesTheBadOption) {
   options.los_reacquire_m = -0.1;
   options.no_visibility_model_gate_chi2 = -1.0;
   options.nis_window_updates = -1;
+  options.discovered_va_walk_m_per_sqrt_s = -0.001;
   options.discovery.group_size = 2;
   const auto problems = Validate(options);
-  ASSERT_EQ(problems.size(), 6u);
+  ASSERT_EQ(problems.size(), 7u);
   EXPECT_EQ(problems[0].rfind("cutoff_m", 0), 0u);
   EXPECT_EQ(problems[1].rfind("los_reacquire_m", 0), 0u);
   EXPECT_EQ(problems[2].rfind("no_visibility_model_gate_chi2", 0), 0u);
   EXPECT_EQ(problems[3].rfind("nis_window_updates", 0), 0u);
-  EXPECT_EQ(problems[4].rfind("blocked_amplitude_probability", 0), 0u);
-  EXPECT_EQ(problems[5].rfind("discovery.group_size", 0), 0u);
+  EXPECT_EQ(problems[4].rfind("discovered_va_walk_m_per_sqrt_s", 0), 0u);
+  EXPECT_EQ(problems[5].rfind("blocked_amplitude_probability", 0), 0u);
+  EXPECT_EQ(problems[6].rfind("discovery.group_size", 0), 0u);
 }
 
 }  // namespace
