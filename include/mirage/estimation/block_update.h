@@ -33,9 +33,6 @@ class BlockUpdate {
   /// (symmetrised when they are the same block).
   [[nodiscard]] Eigen::Matrix2d Covariance(const State& state, int row_offset, int col_offset) const;
 
-  [[nodiscard]] const Eigen::Matrix2d& W() const { return W_; }
-  [[nodiscard]] const Eigen::Vector2d& u() const { return u_; }
-
  private:
   BlockUpdate(int block_offset, const Eigen::Matrix2d& W, const Eigen::Vector2d& u)
       : block_offset_(block_offset), W_(W), u_(u) {}
