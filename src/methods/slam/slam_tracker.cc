@@ -315,6 +315,10 @@ void SlamTracker::AddToState(std::size_t map_index) {
                                      e.va.covariance_m2);
 }
 
+SlamTracker::Reference SlamTracker::PriorReference() const {
+  return {state_.Mean({BlockKind::kPosition, 0}), state_.Covariance({BlockKind::kPosition, 0}), std::nullopt};
+}
+
 SlamTracker::VaAtReference SlamTracker::VaAt(const Reference& reference, std::size_t map_index) const {
   VaAtReference out;
   if (!InState(map_index)) {  // independent of the agent: stage 1 does not move it
@@ -340,11 +344,11 @@ SlamTracker::VaAtReference SlamTracker::VaAt(const Reference& reference, std::si
 SlamTracker::Reference SlamTracker::StageOne(const std::vector<Pairing>& los,
                                              const std::vector<double>& variances_m2) const {
   const int p = state_.layout().At({BlockKind::kPosition, 0}).offset;
-  Reference reference{state_.Mean({BlockKind::kPosition, 0}), state_.Covariance({BlockKind::kPosition, 0}), std::nullopt};
+  Reference reference = PriorReference();
   // Only the position columns of the rows are non-zero: the anchors are not in the state.
   assert(std::none_of(los.begin(), los.end(), [&](const Pairing& q) { return InState(q.map_index); }));
   const Rows rows = Linearize(state_, los, variances_m2);
-  reference.stage_one = estimation::BlockUpdate::Make(state_, p, Eigen::MatrixXd(rows.H).middleCols(p, 2),
+  reference.stage_one = estimation::BlockUpdate::Make(state_, p, Eigen::MatrixXd(rows.H.middleCols(p, 2)),
                                                       rows.innovation_m, rows.R_m2);
   if (reference.stage_one) {
     reference.position_m = reference.stage_one->Mean(state_, p);
@@ -411,7 +415,7 @@ SlamStepResult SlamTracker::Step(double t_s, std::span<const core::AnchorRanges>
   estimation::PropagateConstantVelocity(state_, 0, t_s, options_.motion);
   WalkDiscoveredVas(dt_s);
   SlamStepResult result;
-  Reference reference{state_.Mean({BlockKind::kPosition, 0}), state_.Covariance({BlockKind::kPosition, 0}), std::nullopt};
+  Reference reference = PriorReference();
   std::vector<Vec2> blocked_m;  // the anchors whose LOS found no range at this step
 
   if (options_.reassociate) {

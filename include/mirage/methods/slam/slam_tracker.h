@@ -314,6 +314,8 @@ class SlamTracker {
   [[nodiscard]] std::vector<Pairing> Associate(const Reference& reference,
                                                std::span<const core::AnchorRanges> measurements, bool los_only,
                                                double gate) const;
+  // The reference without stage 1: the agent's predicted position.
+  [[nodiscard]] Reference PriorReference() const;
   [[nodiscard]] VaAtReference VaAt(const Reference& reference, std::size_t map_index) const;
   [[nodiscard]] Rows Linearize(const estimation::State& state, const std::vector<Pairing>& pairings,
                                const std::vector<double>& variances_m2) const;
