@@ -72,12 +72,19 @@ std::optional<RangePointFit> FitPointToRanges(std::span<const Vec2> positions_m,
   }
   std::vector<bool> use(count, true);
   Vec2 q = Minimise(start_m, positions_m, ranges_m, use, options.max_iterations);
-  // One round of outlier rejection: a candidate's ranges may include a few of another path.
-  const double rms_all_m = std::sqrt(Accumulate(q, positions_m, ranges_m, use).cost_m2 / static_cast<double>(count));
-  const double gate_m = std::max(options.gate_sigmas * rms_all_m, options.min_gate_m);
+  // One round of outlier rejection: a candidate's ranges may include a few of another path. The
+  // gate scales with the median absolute residual (times 1.4826, the std for Gaussian residuals),
+  // which those ranges do not inflate as they do the RMS.
+  std::vector<double> abs_residuals_m(count);
+  for (std::size_t i = 0; i < count; ++i) abs_residuals_m[i] = std::abs((q - positions_m[i]).norm() - ranges_m[i]);
+  std::vector<double> sorted_m = abs_residuals_m;
+  const auto middle = sorted_m.begin() + static_cast<std::ptrdiff_t>(count / 2);
+  std::nth_element(sorted_m.begin(), middle, sorted_m.end());
+  constexpr double kMadToSigma = 1.4826;
+  const double gate_m = std::max(options.gate_sigmas * kMadToSigma * *middle, options.min_gate_m);
   int kept = 0;
   for (std::size_t i = 0; i < count; ++i) {
-    use[i] = std::abs((q - positions_m[i]).norm() - ranges_m[i]) <= gate_m;
+    use[i] = abs_residuals_m[i] <= gate_m;
     if (use[i]) ++kept;
   }
   if (kept < 3) return std::nullopt;

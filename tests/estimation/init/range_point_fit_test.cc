@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // The batch point fit: recovers a point from noisy ranges over an L-shaped walk from either
-// mirror start, keeps a wrong point's residuals large, rejects an outlier, its covariance matches
+// mirror start, keeps a wrong point's residuals large, rejects an outlier and another path's
+// ranges that inflate the RMS (the gate is median-based), its covariance matches
 // the spread of the estimates over seeded noise draws, and refuses degenerate input.
 #include "mirage/estimation/init/range_point_fit.h"
 
@@ -73,6 +74,33 @@ TEST(RangePointFit, LeavesOneOutlierOut) {
   EXPECT_EQ(fit->inliers, static_cast<int>(p.size()) - 1);
   EXPECT_LT((fit->position_m - q).norm(), 0.05);
   EXPECT_LT(fit->rms_m, 0.015);
+}
+
+TEST(RangePointFit, LeavesOutAnotherPathsRangesThatInflateTheRms) {
+  // One range in eight is another path's, 10-20 cm shorter (inside a candidate's 15 cm cut-off
+  // of the predicted range): a 2 cm core with a 5-6 cm RMS. A gate of 3 x RMS (17 cm) would keep
+  // them all; the median-based one leaves them out.
+  core::Rng rng(5, 0);
+  const auto p = LWalk();
+  const Vec2 q(4.0, 5.0);
+  auto r = Ranges(p, q, 0.02, rng);
+  int other = 0;
+  double sum_m2 = 0.0;
+  for (std::size_t i = 0; i < r.size(); ++i) {
+    if (i % 8 == 3) {
+      r[i] -= rng.Uniform(0.10, 0.20);
+      ++other;
+    }
+    const double e = r[i] - (q - p[i]).norm();
+    sum_m2 += e * e;
+  }
+  ASSERT_GT(std::sqrt(sum_m2 / static_cast<double>(r.size())), 0.05) << "the case the RMS gate keeps";
+  const auto fit = FitPointToRanges(p, r, Vec2(3.8, 4.6));
+  ASSERT_TRUE(fit.has_value());
+  // Within one: a 10 cm offset plus 2 sigma of noise comes near the gate (3 x 2 cm).
+  EXPECT_NEAR(fit->inliers, static_cast<int>(p.size()) - other, 1);
+  EXPECT_LT(fit->rms_m, 0.03);
+  EXPECT_LT((fit->position_m - q).norm(), 0.05);
 }
 
 TEST(RangePointFit, CovarianceMatchesTheSpreadOfTheEstimates) {

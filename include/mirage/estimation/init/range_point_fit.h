@@ -1,10 +1,11 @@
 // SPDX-License-Identifier: MIT
 // Batch least-squares fit of a point q to ranges r_i measured from known positions a_i,
 // min sum_i (|q - a_i| - r_i)^2, by Gauss-Newton from a start point, with one round of outlier
-// rejection. Used to verify a VA candidate over all of its ranges before it enters the SLAM
-// state: once the positions span two dimensions (the agent turned) the fit from the wrong mirror
-// hypothesis leaves large residuals, which the RLS-tracked pair cannot show reliably
-// (mirage choice; the thesis resolves the pair by its RLS association alone, Lafer Sec. 4.2.2).
+// rejection (a median-based gate). Used to verify a VA candidate over all of its ranges before it
+// enters the SLAM state: once the positions span two dimensions (the agent turned) the fit from
+// the wrong mirror hypothesis leaves large residuals, which the RLS-tracked pair cannot show
+// reliably (mirage choice; the thesis resolves the pair by its RLS association alone, Lafer Sec.
+// 4.2.2).
 #pragma once
 
 #include <optional>
@@ -28,8 +29,12 @@ struct RangePointFit {
 /// Options of the fit.
 struct RangePointFitOptions {
   int max_iterations = 10;
-  /// Ranges with |residual| above max(gate_sigmas * rms, min_gate_m) after the first fit are
-  /// left out of the second (m).
+  /// Ranges with |residual| above max(gate_sigmas * s, min_gate_m) after the first fit are left
+  /// out of the second (m), s = 1.4826 * median |residual|, the MAD estimate of the residual std.
+  /// Why not the RMS: the ranges to reject inflate it. A weak VA's candidate in the seminar room
+  /// had caught another path's or clutter ranges 10-23 cm short at one step in seven: a core
+  /// within +-4 cm but a 6 cm RMS, so a 3 x RMS gate kept them all; the median barely moves.
+  /// (docs/methods/slam.md, "Promotion by a batch check".)
   double gate_sigmas = 3.0;
   double min_gate_m = 0.05;
   /// Floor of the residual std used for the covariance (m): a lucky small rms must not make the
