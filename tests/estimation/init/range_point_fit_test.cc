@@ -77,9 +77,11 @@ TEST(RangePointFit, LeavesOneOutlierOut) {
 }
 
 TEST(RangePointFit, LeavesOutAnotherPathsRangesThatInflateTheRms) {
-  // One range in eight is another path's, 10-20 cm shorter (inside a candidate's 15 cm cut-off
-  // of the predicted range): a 2 cm core with a 5-6 cm RMS. A gate of 3 x RMS (17 cm) would keep
-  // them all; the median-based one leaves them out.
+  // One range in eight is another path's, 15-20 cm shorter (inside a candidate's 15 cm cut-off
+  // of its hypothesis's predicted range, which may itself be a few cm off): a 2 cm core with a
+  // 6-7 cm RMS. A gate of 3 x RMS (about 19 cm) keeps 3-6 of the 6 (300 seeds of this draw); the
+  // median-based one keeps none in 78 % of them and at most 2 in 99 %. The first pass is fitted
+  // to all ranges, so a few of them can still end near its gate.
   core::Rng rng(5, 0);
   const auto p = LWalk();
   const Vec2 q(4.0, 5.0);
@@ -88,19 +90,20 @@ TEST(RangePointFit, LeavesOutAnotherPathsRangesThatInflateTheRms) {
   double sum_m2 = 0.0;
   for (std::size_t i = 0; i < r.size(); ++i) {
     if (i % 8 == 3) {
-      r[i] -= rng.Uniform(0.10, 0.20);
+      r[i] -= rng.Uniform(0.15, 0.20);
       ++other;
     }
     const double e = r[i] - (q - p[i]).norm();
     sum_m2 += e * e;
   }
-  ASSERT_GT(std::sqrt(sum_m2 / static_cast<double>(r.size())), 0.05) << "the case the RMS gate keeps";
+  ASSERT_GT(std::sqrt(sum_m2 / static_cast<double>(r.size())), 0.06) << "the case the RMS gate keeps";
   const auto fit = FitPointToRanges(p, r, Vec2(3.8, 4.6));
   ASSERT_TRUE(fit.has_value());
-  // Within one: a 10 cm offset plus 2 sigma of noise comes near the gate (3 x 2 cm).
-  EXPECT_NEAR(fit->inliers, static_cast<int>(p.size()) - other, 1);
-  EXPECT_LT(fit->rms_m, 0.03);
-  EXPECT_LT((fit->position_m - q).norm(), 0.05);
+  EXPECT_LE(fit->inliers, static_cast<int>(p.size()) - other + 2);
+  EXPECT_LT(fit->rms_m, 0.04) << "the 2 cm core's, not the 6 cm of all ranges";
+  // Within 3.5 std of the fit's own covariance (a 0.2 % tail for a consistent one).
+  const Vec2 d = fit->position_m - q;
+  EXPECT_LT(std::sqrt(d.dot(fit->covariance_m2.inverse() * d)), 3.5);
 }
 
 TEST(RangePointFit, CovarianceMatchesTheSpreadOfTheEstimates) {

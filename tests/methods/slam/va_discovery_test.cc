@@ -2,9 +2,9 @@
 // The VA discovery on its own: the ranges of one reflection seen from an L-shaped walk, fed in as
 // the tracker feeds them (one anchor, the ranges no active VA explains, the active VAs, the agent's
 // estimate and its covariance). A first-order VA is promoted on the right side of the walk once
-// the walk turns, also with another path's ranges among its own, and nothing is learnt from steps
-// at which the agent is poorly localised; a far VA with a clean fit is promoted with a larger std;
-// the sweep finds a far VA that the step-to-step groups lose.
+// the walk turns, and nothing is learnt from steps at which the agent is poorly localised; a far
+// VA with a clean fit is promoted with a larger std; the sweep finds a far VA that the
+// step-to-step groups lose.
 #include "mirage/methods/slam/va_discovery.h"
 
 #include <algorithm>
@@ -55,17 +55,9 @@ struct Outcome {
   std::size_t most_candidates = 0;
 };
 
-// The ranges of the walk: Gaussian noise, and at every other_path_every-th step (0: none) the
-// range of another path 10-14 cm shorter instead of the VA's (a weak reflection whose own peak
-// was not extracted, inside the candidate's 15 cm cut-off).
-struct WalkRanges {
-  double sigma_m = kRangeSigma_m;
-  int other_path_every = 0;
-};
-
 // Runs the walk; covariance_at(step) is the agent's position covariance the tracker would pass.
 template <typename Covariance>
-Outcome RunWalk(const DiscoveryOptions& options, Covariance covariance_at, const WalkRanges& ranges = {}) {
+Outcome RunWalk(const DiscoveryOptions& options, Covariance covariance_at) {
   VaDiscovery discovery(options);
   core::Rng rng(7, 0);
   Outcome out;
@@ -73,10 +65,7 @@ Outcome RunWalk(const DiscoveryOptions& options, Covariance covariance_at, const
   const auto walk = Walk();
   for (std::size_t k = 0; k < walk.size(); ++k) {
     const Vec2 agent_m = walk[k].position_m;
-    double range_m = (kVa_m - agent_m).norm() + rng.Normal(0.0, ranges.sigma_m);
-    if (ranges.other_path_every > 0 && k % static_cast<std::size_t>(ranges.other_path_every) == 3) {
-      range_m -= rng.Uniform(0.10, 0.14);
-    }
+    const double range_m = (kVa_m - agent_m).norm() + rng.Normal(0.0, kRangeSigma_m);
     const bool explained = std::any_of(active_m.begin(), active_m.end(), [&](const Vec2& va_m) {
       return std::abs((va_m - agent_m).norm() - range_m) < kCutoff_m;
     });
@@ -103,14 +92,6 @@ TEST(VaDiscovery, PromotesTheVaOnTheRightSideOnceTheWalkTurns) {
   EXPECT_EQ(va.anchor_index, 0);
   EXPECT_LT((va.position_m - kVa_m).norm(), 0.05) << va.position_m.transpose();  // not (-1, 0)
   EXPECT_GT(out.promoted_steps.front(), CornerStep()) << "promoted before the walk turned";
-}
-
-TEST(VaDiscovery, AnotherPathsRangesAmongTheCandidatesDoNotHoldItBack) {
-  // One range in eight from another path, 2 cm noise: the batch fit's RMS over all ranges is
-  // about 5 cm, over the limit of 4.5; its median-based outlier gate leaves them out.
-  const Outcome out = RunWalk(DiscoveryOptions{}, [](int) { return Isotropic(0.01); }, {0.02, 8});
-  ASSERT_EQ(out.promoted.size(), 1u);
-  EXPECT_LT((out.promoted.front().position_m - kVa_m).norm(), 0.05) << out.promoted.front().position_m.transpose();
 }
 
 TEST(VaDiscovery, LearnsNothingWhileTheAgentIsPoorlyLocalised) {

@@ -23,7 +23,7 @@ struct RangePointFit {
   /// sigma^2 (J^T J)^-1 over the inliers with sigma = max(rms, range_sigma_floor_m) (m^2).
   Eigen::Matrix2d covariance_m2 = Eigen::Matrix2d::Identity();
   double rms_m = 0.0;              ///< RMS residual over the inliers (m)
-  int inliers = 0;                 ///< ranges within the outlier gate of the final fit
+  int inliers = 0;                 ///< ranges within the outlier gate of the first fit (the final fit's)
 };
 
 /// Options of the fit.
@@ -32,8 +32,9 @@ struct RangePointFitOptions {
   /// Ranges with |residual| above max(gate_sigmas * s, min_gate_m) after the first fit are left
   /// out of the second (m), s = 1.4826 * median |residual|, the MAD estimate of the residual std.
   /// Why not the RMS: the ranges to reject inflate it. A weak VA's candidate in the seminar room
-  /// had caught another path's or clutter ranges 10-23 cm short at one step in seven: a core
-  /// within +-4 cm but a 6 cm RMS, so a 3 x RMS gate kept them all; the median barely moves.
+  /// had caught another path's or clutter ranges 10-23 cm short of the true range at one step in
+  /// seven: a core within +-4 cm but a 6 cm RMS, so a 3 x RMS gate kept them all; the median
+  /// barely moves.
   /// (docs/methods/slam.md, "Promotion by a batch check".)
   double gate_sigmas = 3.0;
   double min_gate_m = 0.05;
