@@ -125,6 +125,7 @@ methods::slam::TrackRecoveryOptions ReadRecovery(YamlMap m) {
   o.lost_steps = m.Integer("lost_steps", o.lost_steps, 1, 1000000);
   o.follow_gate_m = m.NumberInRange("follow_gate_m", o.follow_gate_m, 1e-9, kHuge, "m");
   o.max_jump_m = m.NumberInRange("max_jump_m", o.max_jump_m, 1e-9, kHuge, "m");
+  o.max_speed_mps = m.NumberInRange("max_speed_mps", o.max_speed_mps, 1e-9, kHuge, "m/s");
   m.RejectUnknownKeys();
   return o;
 }
@@ -195,6 +196,8 @@ methods::slam::SlamOptions ReadSlam(YamlMap m, std::size_t walls) {
   o.discovery = ReadDiscovery(m.OptionalMap("discovery"));
   o.blocked_amplitude_probability =
       m.NumberInRange("blocked_amplitude_probability", o.blocked_amplitude_probability, 0.0, 0.5, "");
+  o.startup_amplitude_k_factor =
+      m.NumberInRange("startup_amplitude_k_factor", o.startup_amplitude_k_factor, 0.0, 1e6, "");
   o.shadow_cone_deg = m.NumberInRange("shadow_cone_deg", o.shadow_cone_deg, 0.0, 180.0, "deg");
   o.shadow_sigma_m = m.NumberInRange("shadow_sigma_m", o.shadow_sigma_m, 1e-9, kHuge, "m");
   o.los_reacquire_m = m.NumberInRange("los_reacquire_m", o.los_reacquire_m, 0.0, kHuge, "m");

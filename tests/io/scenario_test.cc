@@ -232,6 +232,7 @@ TEST(LoadScenario, ReadsTheSlamExamplesWithTheValuesTheyState) {
   EXPECT_TRUE(o.va_filter_keeps_associating);
   EXPECT_DOUBLE_EQ(o.amplitude_gate_probability, 0.001);
   EXPECT_DOUBLE_EQ(o.blocked_amplitude_probability, 0.1);
+  EXPECT_DOUBLE_EQ(o.startup_amplitude_k_factor, 10.0);
   EXPECT_DOUBLE_EQ(o.shadow_cone_deg, 0.0);
   EXPECT_DOUBLE_EQ(o.shadow_sigma_m, 0.05);
   EXPECT_DOUBLE_EQ(o.los_reacquire_m, 0.4);
@@ -239,6 +240,7 @@ TEST(LoadScenario, ReadsTheSlamExamplesWithTheValuesTheyState) {
   EXPECT_TRUE(o.recovery.enabled);
   EXPECT_EQ(o.recovery.min_margin, 2);
   EXPECT_EQ(o.recovery.lost_steps, 3);
+  EXPECT_DOUBLE_EQ(o.recovery.max_speed_mps, 1.5);
   EXPECT_TRUE(o.discovery.enabled);
   EXPECT_DOUBLE_EQ(o.discovery.max_agent_sigma_m, 0.1);
   EXPECT_DOUBLE_EQ(o.discovery.verify_far_sigma_per_m, 0.015);
@@ -442,7 +444,8 @@ TEST_F(ScenarioFiles, ReadsTheSlamGateAndVarianceKeys) {
   const std::string path = OverrideSlam("gates.yaml",
                                          "slam:\n  innovation_gate_chi2: 6\n  no_visibility_model_gate_chi2: 2.5\n"
                                          "  amplitude_gate_probability: 0.01\n  blocked_amplitude_probability: 0.2\n"
-                                         "  nis_window_updates: 7\n  discovered_va_walk_m_per_sqrt_s: 0.004\n");
+                                         "  nis_window_updates: 7\n  discovered_va_walk_m_per_sqrt_s: 0.004\n"
+                                         "  startup_amplitude_k_factor: 3\n");
   const auto& slam = LoadScenario(path).mint.slam;
   EXPECT_DOUBLE_EQ(slam.innovation_gate_chi2, 6.0);
   EXPECT_DOUBLE_EQ(slam.no_visibility_model_gate_chi2, 2.5);
@@ -450,6 +453,14 @@ TEST_F(ScenarioFiles, ReadsTheSlamGateAndVarianceKeys) {
   EXPECT_DOUBLE_EQ(slam.blocked_amplitude_probability, 0.2);
   EXPECT_EQ(slam.nis_window_updates, 7);
   EXPECT_DOUBLE_EQ(slam.discovered_va_walk_m_per_sqrt_s, 0.004);
+  EXPECT_DOUBLE_EQ(slam.startup_amplitude_k_factor, 3.0);
+}
+
+TEST_F(ScenarioFiles, ReadsTheRecoverySpeedLimitAndNamesABadOne) {
+  const std::string good = OverrideSlam("speed.yaml", "slam:\n  recovery:\n    max_speed_mps: 2.5\n");
+  EXPECT_DOUBLE_EQ(LoadScenario(good).mint.slam.recovery.max_speed_mps, 2.5);
+  const std::string path = OverrideSlam("speed_bad.yaml", "slam:\n  recovery:\n    max_speed_mps: 0\n");
+  ExpectError(ErrorOf(path), path, 4, {"slam.recovery.max_speed_mps", "out of range"});
 }
 
 TEST_F(ScenarioFiles, NamesABadSlamGateWithItsPathAndLine) {

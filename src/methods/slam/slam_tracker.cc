@@ -58,6 +58,9 @@ std::vector<std::string> Validate(const SlamOptions& options) {
   if (!(options.blocked_amplitude_probability >= 0.0 && options.blocked_amplitude_probability <= 0.5)) {
     problems.push_back("blocked_amplitude_probability must be in [0, 0.5]");
   }
+  if (!(options.startup_amplitude_k_factor >= 0.0) || !std::isfinite(options.startup_amplitude_k_factor)) {
+    problems.push_back("startup_amplitude_k_factor must be >= 0");
+  }
   for (const auto& p : estimation::Validate(options.motion)) problems.push_back("motion." + p);
   for (const auto& p : mint::Validate(options.variance)) problems.push_back("variance." + p);
   for (const auto& p : Validate(options.discovery)) problems.push_back("discovery." + p);
@@ -223,6 +226,7 @@ std::vector<SlamTracker::Pairing> SlamTracker::Associate(const Reference& refere
     const bool anchor_blocked = !los_only && options_.reassociate && LosMissed(anchor.anchor_index);
     std::vector<double> min_amplitude_probability(candidates.size(), options_.amplitude_gate_probability);
     std::vector<std::optional<estimation::RicianLaw>> laws(candidates.size());
+    std::vector<bool> fitted(candidates.size(), false);  // laws[k] is a fitted law, not the start-up one
     std::vector<double> gate_chi2(candidates.size(), gate);
     for (std::size_t k = 0; k < candidates.size(); ++k) {
       const std::size_t i = candidates[k];
@@ -233,14 +237,20 @@ std::vector<SlamTracker::Pairing> SlamTracker::Associate(const Reference& refere
         const double tight = options_.no_visibility_model_gate_chi2;
         if (tight > 0.0) gate_chi2[k] = gate > 0.0 ? std::min(gate, tight) : tight;
       }
-      if (min_amplitude_probability[k] > 0.0) laws[k] = GateLaw(i, at_m, expected_m[k]);
+      if (min_amplitude_probability[k] > 0.0) {
+        laws[k] = GateLaw(i, at_m, expected_m[k]);
+        fitted[k] = laws[k].has_value();
+        if (!laws[k]) laws[k] = StartUpLaw(i, expected_m[k]);
+      }
     }
     // LOS re-acquisition (SlamOptions::los_reacquire_m): a missed LOS gets the wider window,
-    // but only where its amplitude law can vouch for the range.
+    // but only where a fitted amplitude law can vouch for the range (the start-up law, from a
+    // few steps' amplitudes, took a reflection 36 cm behind a twice-missed LOS on range-level
+    // input and diverged the run).
     std::vector<double> cutoff_m(candidates.size(), options_.cutoff_m);
     double widest_cutoff_m = options_.cutoff_m;
     for (std::size_t k = 0; k < candidates.size(); ++k) {
-      if (los_only && map_[candidates[k]].los_missed && laws[k]) {
+      if (los_only && map_[candidates[k]].los_missed && fitted[k]) {
         cutoff_m[k] = std::max(options_.cutoff_m, options_.los_reacquire_m);
         widest_cutoff_m = std::max(widest_cutoff_m, cutoff_m[k]);
       }
@@ -303,6 +313,18 @@ std::optional<estimation::RicianLaw> SlamTracker::GateLaw(std::size_t map_index,
   // amplitude (a blocked path, a diffuse peak) is rejected.
   law.nu *= e.amplitude_law_range_m / std::max(expected_range_m, 0.1);
   law.scatter_power = std::max(law.scatter_power, law.nu * law.nu / 100.0);
+  return law;
+}
+
+std::optional<estimation::RicianLaw> SlamTracker::StartUpLaw(std::size_t map_index, double expected_range_m) const {
+  const Entry& e = map_[map_index];
+  if (e.amplitude_law || !(options_.startup_amplitude_k_factor > 0.0) || e.startup_amplitudes == 0) {
+    return std::nullopt;
+  }
+  // The specular amplitude the VA's associations so far had, scaled by 1/d as GateLaw's.
+  estimation::RicianLaw law;
+  law.nu = e.startup_amplitude_range_sum_m / e.startup_amplitudes / std::max(expected_range_m, 0.1);
+  law.scatter_power = law.nu * law.nu / options_.startup_amplitude_k_factor;
   return law;
 }
 
@@ -453,6 +475,11 @@ SlamStepResult SlamTracker::Step(double t_s, std::span<const core::AnchorRanges>
       const auto& amplitude = p.measurement->amplitude;
       const bool amplitude_usable = amplitude && !p.overlapped && !p.shadowed;
       if (amplitude_usable) variance_.AddSample(va.id, reference.position_m, *amplitude);
+      if (amplitude_usable && !map_[p.map_index].amplitude_law) {
+        Entry& e = map_[p.map_index];
+        e.startup_amplitude_range_sum_m += *amplitude * (VaPosition(p.map_index) - reference.position_m).norm();
+        ++e.startup_amplitudes;
+      }
       const mint::VaVariance v = variance_.Variance(va.id, amplitude_usable);
       a.variance_m2 = v.variance_m2;
       a.sinr = v.sinr;

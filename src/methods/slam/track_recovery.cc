@@ -27,6 +27,9 @@ std::vector<std::string> Validate(const TrackRecoveryOptions& options) {
     problems.push_back("follow_gate_m must be > 0 m");
   }
   if (!(options.max_jump_m > 0.0) || !std::isfinite(options.max_jump_m)) problems.push_back("max_jump_m must be > 0 m");
+  if (!(options.max_speed_mps > 0.0) || !std::isfinite(options.max_speed_mps)) {
+    problems.push_back("max_speed_mps must be > 0 m/s");
+  }
   return problems;
 }
 
@@ -154,6 +157,7 @@ std::optional<Restart> TrackRecovery::Check(double t_s, const Vec2& estimate_m, 
   const double span_s = t_s - first_pending_t_s_;
   if (span_s > 0.0) restart.velocity_mps = (pending_m_ - first_pending_m_) / span_s;
   pending_steps_ = 0;
+  if (restart.velocity_mps.norm() > options_.max_speed_mps) return std::nullopt;  // no walker
   return restart;
 }
 

@@ -362,6 +362,52 @@ bool AssociatesAWeakLosStandIn(double amplitude_gate_probability) {
                      [&](const SlamAssociation& a) { return a.va_id == los_id; });
 }
 
+// The range associated to anchor 0's LOS at step 3 of the loop, before any amplitude window has
+// filled: the LOS arrives 8 cm late (as if the track lagged the walker) and a diffuse-multipath
+// peak at a tenth of its amplitude arrives where the LOS should be - nearer to the prediction,
+// inside every range gate.
+std::optional<double> StartUpLosRangeOffset(double startup_amplitude_k_factor) {
+  const auto plan = mint::testing::EmptySquareRoom();
+  const auto vas = mint::testing::SquareRoomVas(plan, 1);
+  SlamOptions options = FirstOrderVasKnown();
+  options.startup_amplitude_k_factor = startup_amplitude_k_factor;
+  const int los_id = vas[0].id;  // anchor 0 itself
+  double los_m = 0.0;
+  const auto step = RunToStep(options, vas, vas, 5, 3, [&](std::vector<core::AnchorRanges>& ranges, const Vec2& p_m) {
+    los_m = (vas[los_id].position_m - p_m).norm();
+    auto& list = ranges[0].ranges;
+    const auto los = std::min_element(list.begin(), list.end(), [&](const auto& a, const auto& b) {
+      return std::abs(a.range_m - los_m) < std::abs(b.range_m - los_m);
+    });
+    core::RangeMeasurement peak = *los;
+    peak.amplitude = 0.1 * *los->amplitude;
+    los->range_m = los_m + 0.08;
+    peak.range_m = los_m;
+    list.push_back(peak);
+  });
+  for (const auto& a : step.associations) {
+    if (a.va_id == los_id) return a.measured_range_m - los_m;
+  }
+  return std::nullopt;
+}
+
+TEST(SlamTracker, StartUpAmplitudeLawKeepsTheLosGateOffAWeakerPeak) {
+  const auto with_law = StartUpLosRangeOffset(10.0);
+  ASSERT_TRUE(with_law.has_value());
+  EXPECT_NEAR(*with_law, 0.08, 1e-9) << "the LOS itself, 8 cm late";
+  const auto without = StartUpLosRangeOffset(0.0);
+  ASSERT_TRUE(without.has_value());
+  EXPECT_NEAR(*without, 0.0, 1e-9) << "without the start-up law the nearer weak peak is taken";
+}
+
+TEST(SlamTracker, ValidateNamesABadStartUpKFactor) {
+  SlamOptions options;
+  options.startup_amplitude_k_factor = -1.0;
+  const auto problems = Validate(options);
+  ASSERT_EQ(problems.size(), 1u);
+  EXPECT_EQ(problems[0].rfind("startup_amplitude_k_factor", 0), 0u);
+}
+
 TEST(SlamTracker, AmplitudeGateRejectsAWeakStandInForABlockedLos) {
   EXPECT_FALSE(AssociatesAWeakLosStandIn(1e-3));
   EXPECT_TRUE(AssociatesAWeakLosStandIn(0.0));  // without the gate the range test alone accepts it

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // Track-loss recovery for SLAM: the LOS-circle candidates, the match count, and the restart rule
 // (a lost estimate on the mirror image of the two-anchor geometry is restarted at the truth after
-// lost_steps steps; a correct estimate is never restarted, clutter or not).
+// lost_steps steps, unless the candidates move faster than a walker; a correct estimate is never
+// restarted, clutter or not).
 #include "mirage/methods/slam/track_recovery.h"
 
 #include <algorithm>
@@ -113,6 +114,32 @@ TEST(TrackRecovery, RestartsAnEstimateOnTheMirrorImageAfterLostSteps) {
   EXPECT_EQ(steps, options.lost_steps);
 }
 
+// The restart of an estimate that sits on the mirror image of a walker moving at velocity_mps,
+// within 10 steps, if any (no clutter: the candidates' chain is never broken by chance).
+std::optional<Restart> RestartOfAMirrorEstimate(const TrackRecoveryOptions& options, const Vec2& velocity_mps) {
+  TrackRecovery recovery(options);
+  core::Rng rng(7, 0);
+  for (int steps = 0; steps < 10; ++steps) {
+    const double t_s = 0.1 * steps;
+    const Vec2 truth_m = Vec2(1.0, 1.5) + velocity_mps * t_s;
+    const auto measured = Measure(truth_m, 0, rng);
+    const Vec2 mirror_m(truth_m.x(), -truth_m.y());
+    if (auto restart = recovery.Check(t_s, mirror_m, kAnchors, ScoreOnTheMap(measured), measured)) return restart;
+  }
+  return std::nullopt;
+}
+
+TEST(TrackRecovery, AChainFasterThanAWalkerRestartsNothing) {
+  // 2 m/s: 0.2 m per step, inside follow_gate_m, so only the speed limit tells it from a walker.
+  const Vec2 fast_mps(2.0, 0.0);
+  ASSERT_LT(0.1 * fast_mps.norm(), TrackRecoveryOptions{}.follow_gate_m);
+  EXPECT_FALSE(RestartOfAMirrorEstimate(TrackRecoveryOptions{}, fast_mps).has_value());
+  TrackRecoveryOptions unlimited;
+  unlimited.max_speed_mps = 10.0;
+  EXPECT_TRUE(RestartOfAMirrorEstimate(unlimited, fast_mps).has_value());
+  EXPECT_TRUE(RestartOfAMirrorEstimate(TrackRecoveryOptions{}, Vec2(1.3, 0.0)).has_value()) << "a 1.3 m/s walk";
+}
+
 TEST(TrackRecovery, NeverRestartsACorrectEstimate) {
   TrackRecovery recovery(TrackRecoveryOptions{});
   core::Rng rng(11, 0);
@@ -148,7 +175,8 @@ TEST(TrackRecoveryOptions, ValidateNamesEachBadValue) {
   o.max_jump_m = 0.0;
   o.min_margin_floor_plan = 0;
   o.floor_plan_watch_steps = -1;
-  EXPECT_EQ(Validate(o).size(), 8u);
+  o.max_speed_mps = 0.0;
+  EXPECT_EQ(Validate(o).size(), 9u);
 }
 
 }  // namespace

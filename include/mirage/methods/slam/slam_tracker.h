@@ -116,6 +116,21 @@ struct SlamOptions {
   /// window (the variance estimator's, Lafer Eq. 3.27) when the VA was last estimated. A blocked path's range is
   /// then a weak diffuse-multipath peak, which passes any range gate but not this one.
   double amplitude_gate_probability = 1e-3;
+  /// Start-up amplitude law (mirage; 0 = off), its Rician K-factor, >= 0. Until a VA's amplitude
+  /// window first fills (0.9 m of associations, VaVarianceOptions) the amplitude gates above have
+  /// no law. With this, a VA with at least one amplitude associated so far is tested against a
+  /// provisional law: specular amplitude the mean of amplitude x range over those associations,
+  /// divided by the expected range (the 1/d of the fitted law), scatter power 1/K of its square.
+  /// Why: a run starts with the velocity unknown, so the first predictions lag the walker by
+  /// several cm, and a later, weaker peak can be nearer to them than the LOS. Seminar room, seed
+  /// 14, trajectory 1, run 12, step 2: A1's LOS at 5.506 m (amplitude 0.18) and a diffuse peak at
+  /// 5.643 m (0.04), 2 cm from the lagging prediction; the peak was taken, the track held on to
+  /// the peaks behind the LOS and stayed near the start while the walker left (diverged, no
+  /// recovery: the map had no VAs yet). K = 10: at amplitude_gate_probability 1e-3 a range below
+  /// 0.35 of the expected amplitude is rejected (0.74 at blocked_amplitude_probability 0.1). The
+  /// LOS re-acquisition (los_reacquire_m) still waits for a fitted law: on range-level input
+  /// (seed 3) the start-up law let it take a reflection 36 cm behind a twice-missed LOS.
+  double startup_amplitude_k_factor = 10.0;
   /// Amplitude gate in a blocked anchor's shadow (mirage; 0 = off), in [0, 0.5]. While an
   /// anchor's LOS found no range at this step (stage 1: missing, gated out or filtered), a range
   /// is associated to one of its VAs without a visibility model (a discovered one, or a prior
@@ -343,6 +358,9 @@ class SlamTracker {
   // The amplitude gate's law for a VA seen from at_m at the expected range, if any.
   [[nodiscard]] std::optional<estimation::RicianLaw> GateLaw(std::size_t map_index, const Vec2& at_m,
                                                              double expected_range_m) const;
+  // Before the VA has a fitted law: the start-up law at the expected range, if any
+  // (SlamOptions::startup_amplitude_k_factor).
+  [[nodiscard]] std::optional<estimation::RicianLaw> StartUpLaw(std::size_t map_index, double expected_range_m) const;
 
   struct Entry {
     MapVa va;
@@ -353,6 +371,10 @@ class SlamTracker {
     std::optional<estimation::RicianLaw> amplitude_law;
     Vec2 amplitude_law_at_m = Vec2::Zero();  ///< agent position of that estimate
     double amplitude_law_range_m = 0.0;       ///< expected range there
+    /// Before amplitude_law exists: the sum of amplitude x expected range over the VA's
+    /// associations, and their number (SlamOptions::startup_amplitude_k_factor).
+    double startup_amplitude_range_sum_m = 0.0;
+    int startup_amplitudes = 0;
     /// An anchor whose LOS found no range at stage 1: read at the next step's stage 1 (LOS
     /// re-acquisition) and, once stage 1 has set it, at this step's stage 2 (shadow cone,
     /// blocked_amplitude_probability). Without reassociate it is set from the joint association,

@@ -73,6 +73,14 @@ struct TrackRecoveryOptions {
   /// intersections of reflections and clutter (on range-level input with clutter before the LOS
   /// one 6 m away won at 3 steps and restarted good tracks in 18 of 25 runs).
   double max_jump_m = 3.0;
+  /// A chain whose winning candidates move faster than this from its first step to its last (m/s),
+  /// > 0, is not a walker but chance intersections: no restart. 1.5 m/s, a brisk walk (the
+  /// scenarios walk at 0.5). Seminar room, seed 18, trajectory 2, run 9, step 85: a chain 3 m off
+  /// at 2.2 m/s (within follow_gate_m at every step) restarted a track that was 3 cm off; the
+  /// track then followed clutter at that speed, 40 m off by the end, and max_jump_m kept every
+  /// later candidate out. The restarts of good chains (seeds 1-27 anchors only, 1-15 known VAs)
+  /// moved at 0.42-0.99 m/s.
+  double max_speed_mps = 1.5;
 };
 
 /// Problems with the options, empty if valid.
