@@ -240,7 +240,7 @@ std::vector<SlamTracker::Pairing> SlamTracker::Associate(const Reference& refere
       if (min_amplitude_probability[k] > 0.0) {
         laws[k] = GateLaw(i, at_m, expected_m[k]);
         fitted[k] = laws[k].has_value();
-        if (!laws[k]) laws[k] = StartUpLaw(i, expected_m[k]);
+        if (!laws[k]) laws[k] = StartUpLaw(i, at_m, expected_m[k]);
       }
     }
     // LOS re-acquisition (SlamOptions::los_reacquire_m): a missed LOS gets the wider window,
@@ -316,11 +316,15 @@ std::optional<estimation::RicianLaw> SlamTracker::GateLaw(std::size_t map_index,
   return law;
 }
 
-std::optional<estimation::RicianLaw> SlamTracker::StartUpLaw(std::size_t map_index, double expected_range_m) const {
+std::optional<estimation::RicianLaw> SlamTracker::StartUpLaw(std::size_t map_index, const Vec2& at_m,
+                                                             double expected_range_m) const {
   const Entry& e = map_[map_index];
-  if (e.amplitude_law || !(options_.startup_amplitude_k_factor > 0.0) || e.startup_amplitudes == 0) {
+  if (e.amplitude_law || !(options_.startup_amplitude_k_factor > 0.0) || e.startup_amplitudes == 0 ||
+      !(e.startup_amplitude_range_sum_m > 0.0)) {
     return std::nullopt;
   }
+  // Valid as near as the fitted law is (GateLaw): a VA it shut out at the start is let in again.
+  if ((at_m - e.startup_at_m).norm() > 2.0 * options_.variance.window_max_m) return std::nullopt;
   // The specular amplitude the VA's associations so far had, scaled by 1/d as GateLaw's.
   estimation::RicianLaw law;
   law.nu = e.startup_amplitude_range_sum_m / e.startup_amplitudes / std::max(expected_range_m, 0.1);
@@ -475,8 +479,15 @@ SlamStepResult SlamTracker::Step(double t_s, std::span<const core::AnchorRanges>
       const auto& amplitude = p.measurement->amplitude;
       const bool amplitude_usable = amplitude && !p.overlapped && !p.shadowed;
       if (amplitude_usable) variance_.AddSample(va.id, reference.position_m, *amplitude);
-      if (amplitude_usable && !map_[p.map_index].amplitude_law) {
+      if (amplitude_usable && *amplitude > 0.0 && !map_[p.map_index].amplitude_law) {
         Entry& e = map_[p.map_index];
+        // A record that has expired (StartUpLaw) starts again here.
+        if (e.startup_amplitudes == 0 ||
+            (reference.position_m - e.startup_at_m).norm() > 2.0 * options_.variance.window_max_m) {
+          e.startup_amplitude_range_sum_m = 0.0;
+          e.startup_amplitudes = 0;
+          e.startup_at_m = reference.position_m;
+        }
         e.startup_amplitude_range_sum_m += *amplitude * (VaPosition(p.map_index) - reference.position_m).norm();
         ++e.startup_amplitudes;
       }
@@ -661,7 +672,11 @@ bool SlamTracker::RecoverTrack(double t_s, std::span<const core::AnchorRanges> m
   estimation::CovarianceOps::Reinitialize(state_, {BlockKind::kVelocity, 0}, restart->velocity_mps,
                                           Eigen::Matrix2d::Identity() * sv2);
   discovery_.Reset();
-  for (auto& e : map_) e.innovation_scale.Reset();  // taken along the lost track
+  for (auto& e : map_) {  // both taken along the lost track
+    e.innovation_scale.Reset();
+    e.startup_amplitudes = 0;
+    e.startup_amplitude_range_sum_m = 0.0;
+  }
   return true;
 }
 

@@ -364,9 +364,9 @@ bool AssociatesAWeakLosStandIn(double amplitude_gate_probability) {
 
 // The range associated to anchor 0's LOS at step 3 of the loop, before any amplitude window has
 // filled: the LOS arrives 8 cm late (as if the track lagged the walker) and a diffuse-multipath
-// peak at a tenth of its amplitude arrives where the LOS should be - nearer to the prediction,
-// inside every range gate.
-std::optional<double> StartUpLosRangeOffset(double startup_amplitude_k_factor) {
+// peak at `peak_factor` of its amplitude arrives where the LOS should be - nearer to the
+// prediction, inside every range gate.
+std::optional<double> StartUpLosRangeOffset(double startup_amplitude_k_factor, double peak_factor = 0.1) {
   const auto plan = mint::testing::EmptySquareRoom();
   const auto vas = mint::testing::SquareRoomVas(plan, 1);
   SlamOptions options = FirstOrderVasKnown();
@@ -380,7 +380,7 @@ std::optional<double> StartUpLosRangeOffset(double startup_amplitude_k_factor) {
       return std::abs(a.range_m - los_m) < std::abs(b.range_m - los_m);
     });
     core::RangeMeasurement peak = *los;
-    peak.amplitude = 0.1 * *los->amplitude;
+    peak.amplitude = peak_factor * *los->amplitude;
     los->range_m = los_m + 0.08;
     peak.range_m = los_m;
     list.push_back(peak);
@@ -398,6 +398,12 @@ TEST(SlamTracker, StartUpAmplitudeLawKeepsTheLosGateOffAWeakerPeak) {
   const auto without = StartUpLosRangeOffset(0.0);
   ASSERT_TRUE(without.has_value());
   EXPECT_NEAR(*without, 0.0, 1e-9) << "without the start-up law the nearer weak peak is taken";
+  // A peak at 0.7 of the LOS's amplitude is above the K = 10 law's 1e-3 quantile (0.35 of the
+  // amplitude the LOS had so far, which this step's draw may fall short of): it passes, and the
+  // nearer range wins as without the law.
+  const auto strong = StartUpLosRangeOffset(10.0, 0.7);
+  ASSERT_TRUE(strong.has_value());
+  EXPECT_NEAR(*strong, 0.0, 1e-9);
 }
 
 TEST(SlamTracker, ValidateNamesABadStartUpKFactor) {
@@ -413,12 +419,12 @@ TEST(SlamTracker, AmplitudeGateRejectsAWeakStandInForABlockedLos) {
   EXPECT_TRUE(AssociatesAWeakLosStandIn(0.0));  // without the gate the range test alone accepts it
 }
 
-// Whether the tracker takes anchor 0's LOS at step 60 of the loop back at stage 1 when it
+// Whether the tracker takes anchor 0's LOS at step step_k of the loop back at stage 1 when it
 // arrives 0.3 m later than expected (as for a track 0.3 m off after a shadow), at
-// `amplitude_factor` of its amplitude, with the LOS missing at step 59 if `missed_before`.
+// `amplitude_factor` of its amplitude, with the LOS missing at the step before if `missed_before`.
 // (Here the rest of the map is right, so stage 2 overrules the pulled reference; in the
 // seminar room it is the map that is off.)
-bool ReacquiresLos(double los_reacquire_m, bool missed_before, double amplitude_factor) {
+bool ReacquiresLos(double los_reacquire_m, bool missed_before, double amplitude_factor, std::size_t step_k = 60) {
   const auto plan = mint::testing::EmptySquareRoom();
   const auto vas = mint::testing::SquareRoomVas(plan, 1);
   SlamOptions options;  // amplitude gate on (1e-3)
@@ -440,9 +446,30 @@ bool ReacquiresLos(double los_reacquire_m, bool missed_before, double amplitude_
     los->range_m += 0.3;
     los->amplitude = amplitude_factor * *los->amplitude;
   };
-  const auto step = RunToStep(options, vas, vas, 5, 60, late, miss);
+  const auto step = RunToStep(options, vas, vas, 5, step_k, late, miss);
   EXPECT_LE(step.reacquired_los, 1) << "anchor 1's LOS was never missed";
   return step.reacquired_los == 1;
+}
+
+TEST(SlamTracker, AZeroFirstAmplitudeDoesNotShutTheLosOut) {
+  // Recorded input may give an amplitude of 0. At step 1, the first the start-up law records,
+  // every range of anchor 0 has one; at step 2 its LOS must still be associated (a law with a
+  // zero specular amplitude would reject every amplitude there is).
+  const auto plan = mint::testing::EmptySquareRoom();
+  const auto vas = mint::testing::SquareRoomVas(plan, 1);
+  const Edit zero = [](std::vector<core::AnchorRanges>& ranges, const Vec2&) {
+    for (auto& r : ranges[0].ranges) r.amplitude = 0.0;
+  };
+  const auto step = RunToStep(FirstOrderVasKnown(), vas, vas, 5, 2, [](auto&, const Vec2&) {}, zero);
+  EXPECT_TRUE(std::any_of(step.associations.begin(), step.associations.end(),
+                          [&](const SlamAssociation& a) { return a.va_id == vas[0].id; }));
+}
+
+TEST(SlamTracker, TheStartUpLawDoesNotWidenTheLosReacquisition) {
+  // At step 3 no amplitude window has filled: only the start-up law exists, and only a fitted
+  // law may open the wider window. At step 60 the same late LOS is taken back.
+  EXPECT_FALSE(ReacquiresLos(0.4, true, 1.0, 3));
+  EXPECT_TRUE(ReacquiresLos(0.4, true, 1.0, 60));
 }
 
 TEST(SlamTracker, LosReacquisitionTakesAStrongLosOutsideTheCutoffOnlyAfterAMiss) {

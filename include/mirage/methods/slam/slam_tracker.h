@@ -117,17 +117,22 @@ struct SlamOptions {
   /// then a weak diffuse-multipath peak, which passes any range gate but not this one.
   double amplitude_gate_probability = 1e-3;
   /// Start-up amplitude law (mirage; 0 = off), its Rician K-factor, >= 0. Until a VA's amplitude
-  /// window first fills (0.9 m of associations, VaVarianceOptions) the amplitude gates above have
-  /// no law. With this, a VA with at least one amplitude associated so far is tested against a
-  /// provisional law: specular amplitude the mean of amplitude x range over those associations,
-  /// divided by the expected range (the 1/d of the fitted law), scatter power 1/K of its square.
+  /// window first fills (0.9 m of associations, VaVarianceOptions) the amplitude gates
+  /// (amplitude_gate_probability, blocked_amplitude_probability) have no law. With this, a VA
+  /// with at least one positive amplitude associated so far is tested against a provisional law:
+  /// specular amplitude the mean of amplitude x range over those associations, divided by the
+  /// expected range (the 1/d of the fitted law), scatter power 1/K of its square. Like the fitted
+  /// law it holds within two window lengths (2 x window_max_m) of where its first amplitude was
+  /// taken, so a VA it shuts out is let in again farther on; a track restart clears it.
   /// Why: a run starts with the velocity unknown, so the first predictions lag the walker by
   /// several cm, and a later, weaker peak can be nearer to them than the LOS. Seminar room, seed
   /// 14, trajectory 1, run 12, step 2: A1's LOS at 5.506 m (amplitude 0.18) and a diffuse peak at
   /// 5.643 m (0.04), 2 cm from the lagging prediction; the peak was taken, the track held on to
   /// the peaks behind the LOS and stayed near the start while the walker left (diverged, no
-  /// recovery: the map had no VAs yet). K = 10: at amplitude_gate_probability 1e-3 a range below
-  /// 0.35 of the expected amplitude is rejected (0.74 at blocked_amplitude_probability 0.1). The
+  /// recovery: the map had no VAs yet). K = 10: at amplitude_gate_probability 1e-3 a range whose
+  /// amplitude is below 0.35 of the expected one is rejected (0.74 at blocked_amplitude_probability
+  /// 0.1). Stricter than the fitted law for a fading reflection: of a Rayleigh path's (K = 0)
+  /// amplitudes 9 % fail at 1e-3, 35 % at 0.1; of a K = 10 path's 0.1 % and 12 %. The
   /// LOS re-acquisition (los_reacquire_m) still waits for a fitted law: on range-level input
   /// (seed 3) the start-up law let it take a reflection 36 cm behind a twice-missed LOS.
   double startup_amplitude_k_factor = 10.0;
@@ -360,7 +365,8 @@ class SlamTracker {
                                                              double expected_range_m) const;
   // Before the VA has a fitted law: the start-up law at the expected range, if any
   // (SlamOptions::startup_amplitude_k_factor).
-  [[nodiscard]] std::optional<estimation::RicianLaw> StartUpLaw(std::size_t map_index, double expected_range_m) const;
+  [[nodiscard]] std::optional<estimation::RicianLaw> StartUpLaw(std::size_t map_index, const Vec2& at_m,
+                                                                double expected_range_m) const;
 
   struct Entry {
     MapVa va;
@@ -372,9 +378,11 @@ class SlamTracker {
     Vec2 amplitude_law_at_m = Vec2::Zero();  ///< agent position of that estimate
     double amplitude_law_range_m = 0.0;       ///< expected range there
     /// Before amplitude_law exists: the sum of amplitude x expected range over the VA's
-    /// associations, and their number (SlamOptions::startup_amplitude_k_factor).
+    /// associations, their number, and the agent position of the first
+    /// (SlamOptions::startup_amplitude_k_factor).
     double startup_amplitude_range_sum_m = 0.0;
     int startup_amplitudes = 0;
+    Vec2 startup_at_m = Vec2::Zero();
     /// An anchor whose LOS found no range at stage 1: read at the next step's stage 1 (LOS
     /// re-acquisition) and, once stage 1 has set it, at this step's stage 2 (shadow cone,
     /// blocked_amplitude_probability). Without reassociate it is set from the joint association,

@@ -79,7 +79,7 @@ struct TrackRecoveryOptions {
   /// at 2.2 m/s (within follow_gate_m at every step) restarted a track that was 3 cm off; the
   /// track then followed clutter at that speed, 40 m off by the end, and max_jump_m kept every
   /// later candidate out. The restarts of good chains (seeds 1-27 anchors only, 1-15 known VAs)
-  /// moved at 0.42-0.99 m/s.
+  /// moved at 0.42-0.99 m/s. With lost_steps 1 there is no chain, and no limit.
   double max_speed_mps = 1.5;
 };
 
