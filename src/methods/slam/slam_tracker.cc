@@ -304,8 +304,8 @@ std::optional<estimation::RicianLaw> SlamTracker::GateLaw(std::size_t map_index,
                                                           double expected_range_m) const {
   const Entry& e = map_[map_index];
   if (!e.amplitude_law) return std::nullopt;
-  // Valid near where it was fitted: two window lengths, enough to bridge an obstacle's shadow.
-  if ((at_m - e.amplitude_law_at_m).norm() > 2.0 * options_.variance.window_max_m) return std::nullopt;
+  // Valid near where it was fitted (LawReachM).
+  if ((at_m - e.amplitude_law_at_m).norm() > LawReachM()) return std::nullopt;
   estimation::RicianLaw law = *e.amplitude_law;
   // The specular amplitude falls as 1 / d (free-space path loss along the path, Lafer Eq. 2.3);
   // the scatter floor is kept at K <= 100 (20 dB): a window of a strong LOS has almost no spread,
@@ -316,18 +316,28 @@ std::optional<estimation::RicianLaw> SlamTracker::GateLaw(std::size_t map_index,
   return law;
 }
 
+void SlamTracker::StartUpAmplitudes::Add(double amplitude, double range_m, const Vec2& at_m, double reach_m) {
+  if (!(amplitude > 0.0)) return;  // a zero amplitude (recorded input allows it) would zero the law
+  if (count == 0 || (at_m - first_at_m).norm() > reach_m) *this = {0.0, 0, at_m};
+  amplitude_range_sum_m += amplitude * range_m;
+  ++count;
+}
+
+std::optional<double> SlamTracker::StartUpAmplitudes::MeanAmplitudeRange(const Vec2& at_m, double reach_m) const {
+  if (count == 0 || !(amplitude_range_sum_m > 0.0) || (at_m - first_at_m).norm() > reach_m) return std::nullopt;
+  return amplitude_range_sum_m / count;
+}
+
 std::optional<estimation::RicianLaw> SlamTracker::StartUpLaw(std::size_t map_index, const Vec2& at_m,
                                                              double expected_range_m) const {
   const Entry& e = map_[map_index];
-  if (e.amplitude_law || !(options_.startup_amplitude_k_factor > 0.0) || e.startup_amplitudes == 0 ||
-      !(e.startup_amplitude_range_sum_m > 0.0)) {
-    return std::nullopt;
-  }
+  if (e.amplitude_law || !(options_.startup_amplitude_k_factor > 0.0)) return std::nullopt;
   // Valid as near as the fitted law is (GateLaw): a VA it shut out at the start is let in again.
-  if ((at_m - e.startup_at_m).norm() > 2.0 * options_.variance.window_max_m) return std::nullopt;
+  const auto amplitude_range_m = e.startup.MeanAmplitudeRange(at_m, LawReachM());
+  if (!amplitude_range_m) return std::nullopt;
   // The specular amplitude the VA's associations so far had, scaled by 1/d as GateLaw's.
   estimation::RicianLaw law;
-  law.nu = e.startup_amplitude_range_sum_m / e.startup_amplitudes / std::max(expected_range_m, 0.1);
+  law.nu = *amplitude_range_m / std::max(expected_range_m, 0.1);
   law.scatter_power = law.nu * law.nu / options_.startup_amplitude_k_factor;
   return law;
 }
@@ -479,17 +489,9 @@ SlamStepResult SlamTracker::Step(double t_s, std::span<const core::AnchorRanges>
       const auto& amplitude = p.measurement->amplitude;
       const bool amplitude_usable = amplitude && !p.overlapped && !p.shadowed;
       if (amplitude_usable) variance_.AddSample(va.id, reference.position_m, *amplitude);
-      if (amplitude_usable && *amplitude > 0.0 && !map_[p.map_index].amplitude_law) {
-        Entry& e = map_[p.map_index];
-        // A record that has expired (StartUpLaw) starts again here.
-        if (e.startup_amplitudes == 0 ||
-            (reference.position_m - e.startup_at_m).norm() > 2.0 * options_.variance.window_max_m) {
-          e.startup_amplitude_range_sum_m = 0.0;
-          e.startup_amplitudes = 0;
-          e.startup_at_m = reference.position_m;
-        }
-        e.startup_amplitude_range_sum_m += *amplitude * (VaPosition(p.map_index) - reference.position_m).norm();
-        ++e.startup_amplitudes;
+      if (amplitude_usable && !map_[p.map_index].amplitude_law) {
+        map_[p.map_index].startup.Add(*amplitude, (VaPosition(p.map_index) - reference.position_m).norm(),
+                                      reference.position_m, LawReachM());
       }
       const mint::VaVariance v = variance_.Variance(va.id, amplitude_usable);
       a.variance_m2 = v.variance_m2;
@@ -674,8 +676,7 @@ bool SlamTracker::RecoverTrack(double t_s, std::span<const core::AnchorRanges> m
   discovery_.Reset();
   for (auto& e : map_) {  // both taken along the lost track
     e.innovation_scale.Reset();
-    e.startup_amplitudes = 0;
-    e.startup_amplitude_range_sum_m = 0.0;
+    e.startup.Clear();
   }
   return true;
 }

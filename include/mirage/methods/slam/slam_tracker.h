@@ -360,6 +360,9 @@ class SlamTracker {
   void MarkShadowed(std::vector<Pairing>& pairings, std::span<const Vec2> blocked_m, const Vec2& at_m) const;
   // Track-loss check after the update; restarts the agent and returns true when it was lost.
   bool RecoverTrack(double t_s, std::span<const core::AnchorRanges> measurements);
+  // How far from where an amplitude law was formed it still holds: two window lengths, enough to
+  // bridge an obstacle's shadow (m).
+  [[nodiscard]] double LawReachM() const { return 2.0 * options_.variance.window_max_m; }
   // The amplitude gate's law for a VA seen from at_m at the expected range, if any.
   [[nodiscard]] std::optional<estimation::RicianLaw> GateLaw(std::size_t map_index, const Vec2& at_m,
                                                              double expected_range_m) const;
@@ -367,6 +370,20 @@ class SlamTracker {
   // (SlamOptions::startup_amplitude_k_factor).
   [[nodiscard]] std::optional<estimation::RicianLaw> StartUpLaw(std::size_t map_index, const Vec2& at_m,
                                                                 double expected_range_m) const;
+
+  // The amplitudes of a VA's associations before it has a fitted law, as amplitude x expected
+  // range (the specular amplitude falls as 1 / d), from the agent position of the first.
+  struct StartUpAmplitudes {
+    double amplitude_range_sum_m = 0.0;
+    int count = 0;
+    Vec2 first_at_m = Vec2::Zero();
+    // Records an amplitude (only > 0) seen from at_m at range_m; a record formed farther than
+    // reach_m away starts again here.
+    void Add(double amplitude, double range_m, const Vec2& at_m, double reach_m);
+    // The mean amplitude x range, while the record holds at at_m (within reach_m of its first).
+    [[nodiscard]] std::optional<double> MeanAmplitudeRange(const Vec2& at_m, double reach_m) const;
+    void Clear() { *this = StartUpAmplitudes{}; }
+  };
 
   struct Entry {
     MapVa va;
@@ -377,12 +394,9 @@ class SlamTracker {
     std::optional<estimation::RicianLaw> amplitude_law;
     Vec2 amplitude_law_at_m = Vec2::Zero();  ///< agent position of that estimate
     double amplitude_law_range_m = 0.0;       ///< expected range there
-    /// Before amplitude_law exists: the sum of amplitude x expected range over the VA's
-    /// associations, their number, and the agent position of the first
+    /// Before amplitude_law exists, the amplitudes the start-up law is formed from
     /// (SlamOptions::startup_amplitude_k_factor).
-    double startup_amplitude_range_sum_m = 0.0;
-    int startup_amplitudes = 0;
-    Vec2 startup_at_m = Vec2::Zero();
+    StartUpAmplitudes startup;
     /// An anchor whose LOS found no range at stage 1: read at the next step's stage 1 (LOS
     /// re-acquisition) and, once stage 1 has set it, at this step's stage 2 (shadow cone,
     /// blocked_amplitude_probability). Without reassociate it is set from the joint association,
