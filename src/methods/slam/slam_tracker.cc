@@ -226,7 +226,6 @@ std::vector<SlamTracker::Pairing> SlamTracker::Associate(const Reference& refere
     const bool anchor_blocked = !los_only && options_.reassociate && LosMissed(anchor.anchor_index);
     std::vector<double> min_amplitude_probability(candidates.size(), options_.amplitude_gate_probability);
     std::vector<std::optional<estimation::RicianLaw>> laws(candidates.size());
-    std::vector<bool> fitted(candidates.size(), false);  // laws[k] is a fitted law, not the start-up one
     std::vector<double> gate_chi2(candidates.size(), gate);
     for (std::size_t k = 0; k < candidates.size(); ++k) {
       const std::size_t i = candidates[k];
@@ -239,18 +238,19 @@ std::vector<SlamTracker::Pairing> SlamTracker::Associate(const Reference& refere
       }
       if (min_amplitude_probability[k] > 0.0) {
         laws[k] = GateLaw(i, at_m, expected_m[k]);
-        fitted[k] = laws[k].has_value();
         if (!laws[k]) laws[k] = StartUpLaw(i, at_m, expected_m[k]);
       }
     }
     // LOS re-acquisition (SlamOptions::los_reacquire_m): a missed LOS gets the wider window,
     // but only where a fitted amplitude law can vouch for the range (the start-up law, from a
     // few steps' amplitudes, took a reflection 36 cm behind a twice-missed LOS on range-level
-    // input and diverged the run).
+    // input and diverged the run). A VA with a fitted law never has a start-up one (StartUpLaw),
+    // so a law here with a fitted one in the entry is the fitted law.
     std::vector<double> cutoff_m(candidates.size(), options_.cutoff_m);
     double widest_cutoff_m = options_.cutoff_m;
     for (std::size_t k = 0; k < candidates.size(); ++k) {
-      if (los_only && map_[candidates[k]].los_missed && fitted[k]) {
+      const Entry& e = map_[candidates[k]];
+      if (los_only && e.los_missed && laws[k] && e.amplitude_law) {
         cutoff_m[k] = std::max(options_.cutoff_m, options_.los_reacquire_m);
         widest_cutoff_m = std::max(widest_cutoff_m, cutoff_m[k]);
       }
