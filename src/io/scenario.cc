@@ -202,6 +202,7 @@ methods::slam::SlamOptions ReadSlam(YamlMap m, std::size_t walls) {
   o.shadow_sigma_m = m.NumberInRange("shadow_sigma_m", o.shadow_sigma_m, 1e-9, kHuge, "m");
   o.los_reacquire_m = m.NumberInRange("los_reacquire_m", o.los_reacquire_m, 0.0, kHuge, "m");
   o.nis_window_updates = m.Integer("nis_window_updates", o.nis_window_updates, 0, 100000);
+  o.max_speed_mps = m.NumberInRange("max_speed_mps", o.max_speed_mps, 0.0, kHuge, "m/s");
   o.discovered_va_walk_m_per_sqrt_s =
       m.NumberInRange("discovered_va_walk_m_per_sqrt_s", o.discovered_va_walk_m_per_sqrt_s, 0.0, kHuge, "m/sqrt(s)");
   o.recovery = ReadRecovery(m.OptionalMap("recovery"));

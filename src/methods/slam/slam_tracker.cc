@@ -12,6 +12,7 @@
 #include "mirage/estimation/gates/chi2_gate.h"
 #include "mirage/estimation/gates/rician_gate.h"
 #include "mirage/estimation/meas/va_range.h"
+#include "mirage/estimation/motion/speed_limit.h"
 #include "mirage/estimation/range_association.h"
 #include "mirage/geometry/visibility.h"
 #include "mirage/methods/mint/relocalization.h"
@@ -60,6 +61,9 @@ std::vector<std::string> Validate(const SlamOptions& options) {
   }
   if (!(options.startup_amplitude_k_factor >= 0.0) || !std::isfinite(options.startup_amplitude_k_factor)) {
     problems.push_back("startup_amplitude_k_factor must be >= 0");
+  }
+  if (!(options.max_speed_mps >= 0.0) || !std::isfinite(options.max_speed_mps)) {
+    problems.push_back("max_speed_mps must be >= 0 (0 = off)");
   }
   for (const auto& p : estimation::Validate(options.motion)) problems.push_back("motion." + p);
   for (const auto& p : mint::Validate(options.variance)) problems.push_back("variance." + p);
@@ -521,6 +525,9 @@ SlamStepResult SlamTracker::Step(double t_s, std::span<const core::AnchorRanges>
     ++map_[p.map_index].va.associations;
   }
   result.update = Update(state_, updating, variances);
+  // Before the recovery looks at the track: a runaway velocity would carry the next predictions
+  // beyond its reach (max_jump_m).
+  estimation::LimitSpeed(state_, 0, options_.max_speed_mps);
   result.relocalized = RecoverTrack(t_s, measurements);
 
   // Discovery with the ranges nobody took, from the posterior agent position; not at a restart,
