@@ -48,35 +48,45 @@ def read_tracks(directory):
     except OSError as e:
         raise InputError(f"{path}: cannot open: {e.strerror}")
     runs = {}
-    with f:
-        reader = csv.reader(f)
-        header = next(reader, None)
-        if header is None:
-            raise InputError(f"{path}:1: empty file (expected a header with trajectory, run, error_m)")
-        col = {}
-        for key in ("trajectory", "run", "error_m"):
-            if key not in header:
-                raise InputError(f"{path}:1: header has no column '{key}'")
-            col[key] = header.index(key)
-        for line_no, row in enumerate(reader, start=2):
-            if len(row) != len(header):
-                raise InputError(f"{path}:{line_no}: {len(row)} fields, the header has {len(header)}")
-            trajectory = row[col["trajectory"]]
-            try:
-                run = int(row[col["run"]])
-            except ValueError:
-                raise InputError(f"{path}:{line_no}: run '{row[col['run']]}' is not an integer")
-            text = row[col["error_m"]]
-            try:
-                error_m = float(text)
-            except ValueError:
-                raise InputError(f"{path}:{line_no}: error_m '{text}' is not a number")
-            if not math.isfinite(error_m) or error_m < 0:
-                raise InputError(f"{path}:{line_no}: error_m '{text}' is not a finite value >= 0")
-            runs.setdefault(trajectory, {}).setdefault(run, []).append(error_m)
+    try:
+        with f:
+            read_rows(path, csv.reader(f), runs)
+    except UnicodeDecodeError as e:
+        raise InputError(f"{path}: not UTF-8 text ({e.reason} at byte {e.start})")
+    except csv.Error as e:
+        raise InputError(f"{path}: not CSV ({e})")
     if not runs:
         raise InputError(f"{path}: no rows")
     return runs
+
+
+def read_rows(path, reader, runs):
+    """Adds the rows of `reader` (over path) to runs; reader.line_num is the file's line."""
+    header = next(reader, None)
+    if header is None:
+        raise InputError(f"{path}:1: empty file (expected a header with trajectory, run, error_m)")
+    col = {}
+    for key in ("trajectory", "run", "error_m"):
+        if key not in header:
+            raise InputError(f"{path}:1: header has no column '{key}'")
+        col[key] = header.index(key)
+    for row in reader:
+        where = f"{path}:{reader.line_num}"
+        if len(row) != len(header):
+            raise InputError(f"{where}: {len(row)} fields, the header has {len(header)}")
+        trajectory = row[col["trajectory"]]
+        try:
+            run = int(row[col["run"]])
+        except ValueError:
+            raise InputError(f"{where}: run '{row[col['run']]}' is not an integer")
+        text = row[col["error_m"]]
+        try:
+            error_m = float(text)
+        except ValueError:
+            raise InputError(f"{where}: error_m '{text}' is not a number")
+        if not math.isfinite(error_m) or error_m < 0:
+            raise InputError(f"{where}: error_m '{text}' is not a finite value >= 0")
+        runs.setdefault(trajectory, {}).setdefault(run, []).append(error_m)
 
 
 def pooled(errors, keys):

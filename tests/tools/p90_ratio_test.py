@@ -144,6 +144,40 @@ class BadInputTest(unittest.TestCase):
         self.expect_exit_2(["--test", self.good, self.good, "--reference", self.good],
                            "2 --test directories but 1 --reference directories")
 
+    def test_corrupted_files_exit_0_or_2_never_raise(self):
+        # A small fuzz: 300 seeded corruptions of a good tracks.csv (bytes flipped, inserted or
+        # cut, NUL and non-UTF-8 bytes included). Each must either be read (exit 0) or be
+        # reported as bad input (exit 2, a message naming the file or its directory), never end in a traceback.
+        rng = random.Random(2026)
+        with open(f"{self.good}/tracks.csv", "rb") as f:
+            good = f.read() + b"trajectory_1,1,0,0.5\ntrajectory_1,1,1,0.25\n"
+        ref = write_tracks(f"{self.root}/ref", [("trajectory_1", 0, 0, 0.01), ("trajectory_1", 0, 1, 0.02),
+                                                 ("trajectory_1", 1, 0, 0.5), ("trajectory_1", 1, 1, 0.25)])
+        for i in range(300):
+            data = bytearray(good)
+            for _ in range(rng.randint(1, 4)):
+                op, at = rng.randrange(3), rng.randrange(len(data) + 1)
+                if op == 0 and at < len(data):
+                    data[at] = rng.choice([0, 0x22, 0x2C, 0x0A, 0xFF, 0x80, rng.randrange(256)])
+                elif op == 1:
+                    data[at:at] = bytes([rng.randrange(256)])
+                else:
+                    del data[at:at + rng.randint(1, 8)]
+            bad = f"{self.root}/fuzz{i}"
+            os.makedirs(bad)
+            with open(f"{bad}/tracks.csv", "wb") as f:
+                f.write(bytes(data))
+            stderr, stdout = io.StringIO(), io.StringIO()
+            saved = sys.stderr, sys.stdout
+            sys.stderr, sys.stdout = stderr, stdout
+            try:
+                status = p90_ratio.main(["--test", bad, "--reference", ref, "--bootstrap", "5"])
+            finally:
+                sys.stderr, sys.stdout = saved
+            self.assertIn(status, (0, 2), bytes(data))
+            if status == 2:
+                self.assertIn(bad, stderr.getvalue())
+
     def test_different_runs(self):
         other = write_tracks(f"{self.root}/other", [("trajectory_1", 1, 0, 0.01)])
         self.expect_exit_2(["--test", other, "--reference", self.good], "trajectory_1 has different runs")
