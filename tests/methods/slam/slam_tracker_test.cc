@@ -11,6 +11,7 @@
 #include <array>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <map>
 #include <vector>
 
@@ -412,6 +413,18 @@ TEST(SlamTracker, ValidateNamesABadStartUpKFactor) {
   const auto problems = Validate(options);
   ASSERT_EQ(problems.size(), 1u);
   EXPECT_EQ(problems[0].rfind("startup_amplitude_k_factor", 0), 0u);
+}
+
+TEST(SlamTracker, ValidateNamesABadSpeedLimit) {
+  SlamOptions options;
+  options.max_speed_mps = 0.0;  // off
+  EXPECT_TRUE(Validate(options).empty());
+  for (const double bad : {-1.0, std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
+    options.max_speed_mps = bad;
+    const auto problems = Validate(options);
+    ASSERT_EQ(problems.size(), 1u) << bad;
+    EXPECT_EQ(problems[0].rfind("max_speed_mps", 0), 0u) << bad;
+  }
 }
 
 TEST(SlamTracker, AmplitudeGateRejectsAWeakStandInForABlockedLos) {
