@@ -24,6 +24,7 @@ import csv
 import math
 import os
 import random
+import statistics
 import sys
 
 
@@ -93,9 +94,15 @@ def pooled(errors, keys):
     return [e for key in keys for e in errors[key]]
 
 
+def percentiles(test, ref, keys, q):
+    """(test's, reference's, their ratio) over the runs `keys`."""
+    p_test = percentile(pooled(test, keys), q)
+    p_ref = percentile(pooled(ref, keys), q)
+    return p_test, p_ref, p_test / p_ref if p_ref > 0 else math.inf
+
+
 def ratio(test, ref, keys, q):
-    den = percentile(pooled(ref, keys), q)
-    return percentile(pooled(test, keys), q) / den if den > 0 else math.inf
+    return percentiles(test, ref, keys, q)[2]
 
 
 def resampled_ratios(test, ref, keys, q, draws, rng):
@@ -105,11 +112,6 @@ def resampled_ratios(test, ref, keys, q, draws, rng):
         sample = [keys[rng.randrange(len(keys))] for _ in keys]
         out.append(ratio(test, ref, sample, q))
     return sorted(out)
-
-
-def std(values):
-    m = sum(values) / len(values)
-    return math.sqrt(sum((v - m) ** 2 for v in values) / len(values))
 
 
 def compare(test_dirs, ref_dirs, q, limit, draws, seed, out):
@@ -141,11 +143,10 @@ def compare(test_dirs, ref_dirs, q, limit, draws, seed, out):
                 test[(i, run)] = t[name][run]
                 ref[(i, run)] = r[name][run]
             keys += set_keys
-            value = ratio(test, ref, set_keys, q)
+            p_test, p_ref, value = percentiles(test, ref, set_keys, q)
             over += value > limit
-            se = std(resampled_ratios(test, ref, set_keys, q, draws, rng))
-            out.write(f"  {test_dirs[i]} / {ref_dirs[i]}: {percentile(pooled(test, set_keys), q):.4f} / "
-                      f"{percentile(pooled(ref, set_keys), q):.4f}, {value:.3f}, {se:.3f}\n")
+            se = statistics.pstdev(resampled_ratios(test, ref, set_keys, q, draws, rng))
+            out.write(f"  {test_dirs[i]} / {ref_dirs[i]}: {p_test:.4f} / {p_ref:.4f}, {value:.3f}, {se:.3f}\n")
         value = ratio(test, ref, keys, q)
         draws_sorted = resampled_ratios(test, ref, keys, q, draws, rng)
         lo = percentile(draws_sorted, 2.5)
