@@ -153,15 +153,13 @@ std::vector<std::vector<double>> PositionErrorBound(const CoopExperimentConfig& 
   const std::vector<Vec2> start = AgentsAt(truth, agents, 0);
   model.Initialize(start, 0.0);
   estimation::State state = model.state();
-  estimation::ConstantVelocityOptions cv;
-  cv.accel_sigma_mps2 = options.max_speed_mps / 3.0;
   const int n = state.dimension();
   const double sigma1_m = v.synthesizer->pulse().range_sigma_at_unit_sinr_m();
   const Vec2 anchor_m = config.anchor ? config.anchor->position_m : Vec2::Zero();
   std::vector<std::vector<double>> peb(static_cast<std::size_t>(config.steps) + 1);
   for (int step = 0; step <= config.steps; ++step) {
     if (step > 0) {
-      estimation::PropagateConstantVelocityAll(state, agents, step, cv);
+      estimation::PropagateConstantVelocityAll(state, agents, step, methods::coop::CoopMotion(options, step - state.t_s()));
       const std::vector<Vec2> at = AgentsAt(truth, agents, step);
       std::vector<Eigen::RowVectorXd> rows;
       std::vector<double> variance;
@@ -268,15 +266,18 @@ CoopRun RunOne(const CoopExperimentConfig& config, const VariantContext& v,
     frame(translation, wall_error);
     std::vector<double> error, relative;
     std::vector<Vec2> estimate;
+    std::vector<Eigen::Matrix2d> covariance;
     for (int m = 0; m < agents; ++m) {
       const Vec2 diff = tracker.Position(m) - at[static_cast<std::size_t>(m)];
       error.push_back(diff.norm());
       relative.push_back((diff - translation).norm());
       estimate.push_back(tracker.Position(m));
+      covariance.push_back(tracker.PositionCovariance(m));
     }
     out.error_m.push_back(std::move(error));
     out.relative_error_m.push_back(std::move(relative));
     out.estimate_m.push_back(std::move(estimate));
+    out.covariance_m2.push_back(std::move(covariance));
     out.associated.push_back(associated);
     out.expected.push_back(expected);
     if (provided.biased >= 0) out.bias_wall_error_m.push_back(wall_error[static_cast<std::size_t>(provided.biased)]);

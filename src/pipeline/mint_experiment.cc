@@ -70,8 +70,9 @@ RunRecord RunOne(const Shared& shared, int trajectory, int run) {
   const double sigma1_m = shared.simulation.synthesizer->pulse().range_sigma_at_unit_sinr_m();
   TrackerAdapter tracker(config, shared.known_vas, sigma1_m);
   // The thesis starts at the known start point with variance sigma_i^2 (Tab. 3.1); optionally
-  // the start is drawn from that distribution instead.
-  const double sigma_i = config.mint.initial_position_sigma_m;
+  // the start is drawn from that distribution instead, with the sigma_i of the method that runs.
+  const double sigma_i = config.method == Method::kSlam ? config.slam.initial_position_sigma_m
+                                                        : config.mint.initial_position_sigma_m;
   core::Rng& init_rng = simulator.init_rng();
   const Vec2 start_error = Vec2(init_rng.Normal(0.0, sigma_i), init_rng.Normal(0.0, sigma_i));
   const Vec2 p0 = samples.front().position_m + (config.perturb_initial_position ? start_error : Vec2(Vec2::Zero()));

@@ -28,13 +28,13 @@ SimulationContext::SimulationContext(const MintExperimentConfig& c) : config(&c)
 
 RunSimulator::RunSimulator(const SimulationContext& context, int trajectory, int run)
     : context_(context),
-      init_rng_(RunRng(*context.config, trajectory, run).Substream("init")),
-      ranges_rng_(RunRng(*context.config, trajectory, run).Substream("ranges")) {
+      init_rng_(RunRng(*context.config, trajectory, run).Substream("init")) {
   const MintExperimentConfig& config = *context.config;
   const core::Rng run_rng = RunRng(config, trajectory, run);
   for (std::size_t a = 0; a < config.anchors_m.size(); ++a) {
     diffuse_rng_.push_back(run_rng.Substream("diffuse/" + std::to_string(a)));
     noise_rng_.push_back(run_rng.Substream("noise/" + std::to_string(a)));
+    ranges_rng_.push_back(run_rng.Substream("ranges/" + std::to_string(a)));
   }
   const TrajectorySpec& spec = config.trajectories[static_cast<std::size_t>(trajectory)];
   offset_m_ = RunOffset(config.run_grid, run);
@@ -53,7 +53,7 @@ const std::vector<std::vector<channel::PathTruth>>& RunSimulator::Simulate(std::
     // The path-loss reference of the SNR; 1 cm keeps a tag on top of an anchor finite.
     const double los_distance_m = std::max((position_m - config.anchors_m[a]).norm(), 0.01);
     if (context_.range_level) {
-      range_level_.push_back(context_.range_level->Simulate(static_cast<int>(a), paths, los_distance_m, ranges_rng_, &truths_[a]));
+      range_level_.push_back(context_.range_level->Simulate(static_cast<int>(a), paths, los_distance_m, ranges_rng_[a], &truths_[a]));
     } else {
       cirs_.push_back(context_.synthesizer->Synthesize(paths, los_distance_m, diffuse_rng_[a], noise_rng_[a]));
       truths_[a] = cirs_.back().paths;

@@ -166,6 +166,26 @@ TEST(RunMintExperiment, StartsAtAPerturbedPositionWhenAsked) {
   EXPECT_NE(a.runs[0].steps.front().estimate_m, b.runs[0].steps.front().estimate_m);
 }
 
+TEST(RunMintExperiment, DrawsTheSlamStartWithTheSlamInitialSigma) {
+  // Arrange: SLAM with a 0.1 mm start sigma, MINT's left at 0.5 m. A start drawn with MINT's sigma
+  // would be decimetres off, and a tracker that trusts its start to 0.1 mm keeps it there.
+  auto scenario = ShortSeminarRoom(2, 0.5);
+  scenario.mint.method = Method::kSlam;
+  scenario.mint.perturb_initial_position = true;
+  scenario.mint.mint.initial_position_sigma_m = 0.5;
+  scenario.mint.slam.initial_position_sigma_m = 1e-4;
+
+  // Act
+  const auto result = RunMintExperiment(scenario.mint);
+
+  // Assert: every run's first estimate is within 1 cm of the truth (5 sigma of the SLAM draw
+  // plus the first step's update).
+  for (const auto& run : result.runs) {
+    ASSERT_FALSE(run.steps.empty());
+    EXPECT_LT(*run.steps.front().error_m, 0.01) << "trajectory " << run.trajectory << " run " << run.run;
+  }
+}
+
 TEST(RunMintExperiment, RangeLevelRunsRecordTheSamePathTruthAndPebAsCirRuns) {
   // Both models see the same specular paths in the same window with the same true SINR
   // (Eq. 3.25), so every step's path records and PEB must agree; only the measurements differ.

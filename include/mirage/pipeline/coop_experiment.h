@@ -17,6 +17,8 @@
 #include <string>
 #include <vector>
 
+#include <Eigen/Core>
+
 #include "mirage/channel/cir_synthesizer.h"
 #include "mirage/core/types.h"
 #include "mirage/dsp/mpc_extractor.h"
@@ -111,6 +113,8 @@ struct CoopRun {
   std::vector<int> expected;
   /// Estimated positions per step and agent (m).
   std::vector<std::vector<Vec2>> estimate_m;
+  /// Their covariances per step and agent (m^2).
+  std::vector<std::vector<Eigen::Matrix2d>> covariance_m2;
   bool diverged = false;  ///< some agent ended more than 0.5 m off
 };
 

@@ -54,9 +54,8 @@ class RunSimulator {
   const SimulationContext& context_;
   std::vector<geometry::TrajectorySample> samples_;
   Vec2 offset_m_ = Vec2::Zero();
-  std::vector<core::Rng> diffuse_rng_, noise_rng_;
+  std::vector<core::Rng> diffuse_rng_, noise_rng_, ranges_rng_;  // one stream per anchor
   core::Rng init_rng_;
-  core::Rng ranges_rng_;
   std::vector<channel::SynthesizedCir> cirs_;
   std::vector<core::AnchorRanges> range_level_;
   std::vector<std::vector<channel::PathTruth>> truths_;

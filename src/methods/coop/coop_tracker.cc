@@ -65,6 +65,12 @@ std::vector<std::string> Validate(const CoopOptions& o) {
   return problems;
 }
 
+estimation::ConstantVelocityOptions CoopMotion(const CoopOptions& options, double dt_s) {
+  estimation::ConstantVelocityOptions cv;
+  cv.accel_sigma_mps2 = options.max_speed_mps / (3.0 * (dt_s > 0.0 ? dt_s : 1.0));
+  return cv;
+}
+
 CoopTracker::CoopTracker(const CoopOptions& options, geometry::FloorPlan provided_plan, std::vector<Link> links,
                          AntennaLayout antennas, std::optional<Vec2> anchor_m, const PulseFacts& pulse)
     : options_(options),
@@ -220,11 +226,9 @@ CoopStepInfo CoopTracker::Step(double t_s, std::span<const LinkSignal* const> si
   if (signals.size() != links_.size()) {
     throw std::invalid_argument(fmt::format("CoopTracker::Step: {} signals for {} links", signals.size(), links_.size()));
   }
-  // Prediction (Eq. 5, 16): constant velocity per agent with sigma_a = v_max / (3 dt) at dt = 1 s
-  // (Sec. IV-B, one step per second); walls static without process noise.
-  estimation::ConstantVelocityOptions cv;
-  cv.accel_sigma_mps2 = options_.max_speed_mps / 3.0;
-  estimation::PropagateConstantVelocityAll(state_, agents_, t_s, cv);
+  // Prediction (Eq. 5, 16): constant velocity per agent with sigma_a = v_max / (3 dt) (Sec. IV-B);
+  // walls static without process noise.
+  estimation::PropagateConstantVelocityAll(state_, agents_, t_s, CoopMotion(options_, t_s - state_.t_s()));
 
   const geometry::FloorPlan plan = CurrentPlan();
   const std::vector<Vec2> predicted = Positions();

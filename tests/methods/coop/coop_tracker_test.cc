@@ -132,6 +132,32 @@ TEST(CoopTracker, TracksTwoAgentsWithoutAnchorsFromNoisyRangesWithClutter) {
   EXPECT_LT(std::sqrt(tracker.PositionCovariance(0).trace()), 0.05);
 }
 
+// A link that measured nothing this step (the filter only predicts).
+class SilentSignal final : public LinkSignal {
+ public:
+  [[nodiscard]] std::vector<double> Ranges(int /*count*/) const override { return {}; }
+  [[nodiscard]] double AmplitudeAt(double /*range_m*/) const override { return 0.0; }
+};
+
+TEST(CoopTracker, ProcessNoiseAllowsAVelocityChangeOfVmaxPerStepAtAnyStepTime) {
+  // Kulmer Sec. IV-B: sigma_a = v_max / (3 dt), so one step adds (v_max / 3)^2 to each velocity
+  // variance whatever the step time. (Taking v_max / 3 as sigma_a holds only for 1 s steps.)
+  for (const double dt_s : {0.5, 1.0, 2.0}) {
+    CoopOptions options;
+    CoopTracker tracker(options, Room(), EnumerateLinks(2, false), AntennaLayout{}, std::nullopt, kPulse);
+    tracker.Initialize(TwoAgents(0).truth.front(), 0.0);
+    const SilentSignal silent;
+    const std::vector<const LinkSignal*> signals(tracker.links().size(), &silent);
+
+    tracker.Step(dt_s, signals);
+
+    const auto& layout = tracker.state().layout();
+    const int v = layout.At({estimation::BlockKind::kVelocity, 1}).offset;
+    const double added_mps2 = tracker.state().covariance()(v, v) - options.velocity_sigma_mps * options.velocity_sigma_mps;
+    EXPECT_NEAR(added_mps2, std::pow(options.max_speed_mps / 3.0, 2), 1e-15) << "dt " << dt_s << " s";
+  }
+}
+
 TEST(CoopTracker, LearnsABiasedWallOffsetOnlyWithTheWallUpdate) {
   // The provided plan has the west wall 4 cm too far east; the truth has it at x = 0. With the
   // update the filter moves it back (offset along its normal, which points east for the wall

@@ -36,6 +36,7 @@
 
 #include "mirage/core/types.h"
 #include "mirage/estimation/ekf_update.h"
+#include "mirage/estimation/motion/constant_velocity.h"
 #include "mirage/estimation/state.h"
 #include "mirage/geometry/floor_plan.h"
 #include "mirage/geometry/image_path.h"
@@ -79,6 +80,11 @@ struct CoopOptions {
 
 /// Problems with the options, empty if valid.
 std::vector<std::string> Validate(const CoopOptions& options);
+
+/// The agents' constant-velocity model over a step of dt_s (s): sigma_a = v_max / (3 dt), so that
+/// a velocity change of v_max within one step is a 3-sigma event (Kulmer Sec. IV-B; digest
+/// Sec. 2.4). dt_s <= 0 gives sigma_a = v_max / 3 (a zero step adds no noise whatever sigma_a is).
+estimation::ConstantVelocityOptions CoopMotion(const CoopOptions& options, double dt_s);
 
 /// One expected (deterministic) path of a link at the predicted state.
 struct ExpectedPath {
