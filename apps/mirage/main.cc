@@ -3,9 +3,13 @@
 //   mirage run SCENARIO.yaml [--runs N] [--seed S] [--threads T] [--json FILE] [--csv DIR] [--plot FILE]
 //     (a `method: coop` scenario runs its grid of cooperative variants instead)
 //   mirage simulate SCENARIO.yaml --out DIR [--seed S] [--trajectory NAME] [--run R]
+//   mirage --version
+// Exit codes: 0 success, 2 bad input or usage, 3 internal error.
 #include <unistd.h>
 
 #include <algorithm>
+#include <charconv>
+#include <chrono>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
@@ -13,6 +17,7 @@
 #include <mutex>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
@@ -20,6 +25,7 @@
 #include "mirage/io/coop_report.h"
 #include "mirage/io/coop_scenario.h"
 #include "mirage/io/input_error.h"
+#include "mirage/io/output_file.h"
 #include "mirage/io/plot.h"
 #include "mirage/io/recorded_data.h"
 #include "mirage/io/recorded_scenario.h"
@@ -36,7 +42,7 @@ namespace {
 struct RunArgs {
   std::string scenario;
   std::optional<int> runs;
-  std::optional<std::uint64_t> seed;
+  std::string seed;  // parsed by ParseSeed: CLI11 would wrap -1 around to 2^64 - 1
   std::optional<int> threads;
   std::string json;
   std::string csv;
@@ -47,74 +53,141 @@ struct RunArgs {
 struct SimulateArgs {
   std::string scenario;
   std::string out;
-  std::optional<std::uint64_t> seed;
+  std::string seed;
   std::string trajectory;
   int run = 0;
   bool quiet = false;
 };
 
-std::string PlotScript() {
-  // Next to the binary's source tree (build/bin/mirage -> tools/plot_run.py), or $MIRAGE_PLOT_SCRIPT.
-  if (const char* env = std::getenv("MIRAGE_PLOT_SCRIPT"); env != nullptr && *env != '\0') return env;
-  return std::string(MIRAGE_SOURCE_DIR) + "/tools/plot_run.py";
+// The master seed of --seed: a decimal integer in [0, 2^64 - 1]; empty when the option is absent.
+std::optional<std::uint64_t> ParseSeed(const std::string& text) {
+  if (text.empty()) return std::nullopt;
+  std::uint64_t seed = 0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), seed);
+  if (ec != std::errc() || end != text.data() + text.size()) {
+    throw mirage::io::InputError("--seed: expected an integer in [0, 18446744073709551615], got '" + text + "'");
+  }
+  return seed;
 }
 
-std::string CoopPlotScript() {
-  if (const char* env = std::getenv("MIRAGE_COOP_PLOT_SCRIPT"); env != nullptr && *env != '\0') return env;
-  return std::string(MIRAGE_SOURCE_DIR) + "/tools/plot_coop.py";
+// The directory of the running binary (/proc/self/exe), so that its data files are found
+// relative to it wherever the tree was built or installed.
+std::filesystem::path BinaryDirectory() {
+  std::error_code ec;
+  const auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  return ec ? std::filesystem::path(".") : exe.parent_path();
+}
+
+// A plot script: $ENV_NAME if set, else bin/../share/mirage/NAME beside the binary (the build
+// tree and an installed tree have the same layout).
+std::string PlotScript(const char* env_name, const char* file_name) {
+  if (const char* env = std::getenv(env_name); env != nullptr && *env != '\0') return env;
+  return (BinaryDirectory().parent_path() / "share" / "mirage" / file_name).string();
+}
+
+// Progress of the Monte-Carlo jobs on stderr: a bar redrawn in place on a terminal; otherwise
+// (a log file, CI) one line every few seconds, so that a long run is visibly alive.
+class Progress {
+ public:
+  Progress(bool quiet, std::string what) : quiet_(quiet), tty_(isatty(STDERR_FILENO) != 0), what_(std::move(what)) {}
+  void operator()(int done, int total) {
+    if (quiet_) return;
+    const std::lock_guard<std::mutex> lock(mutex_);
+    const auto now = Clock::now();
+    if (tty_) {
+      constexpr int kWidth = 40;
+      const int filled = done * kWidth / std::max(1, total);
+      std::fprintf(stderr, "\r[%s%s] %d/%d %s", std::string(static_cast<std::size_t>(filled), '#').c_str(),
+                   std::string(static_cast<std::size_t>(kWidth - filled), '.').c_str(), done, total, what_.c_str());
+      if (done == total) std::fprintf(stderr, "\n");
+      return;
+    }
+    if (done == total || now - last_ >= kInterval) {
+      std::fprintf(stderr, "mirage: %d/%d %s done (%.0f s)\n", done, total, what_.c_str(),
+                   std::chrono::duration<double>(now - start_).count());
+      last_ = now;
+    }
+  }
+
+ private:
+  using Clock = std::chrono::steady_clock;
+  static constexpr std::chrono::seconds kInterval{5};
+  bool quiet_;
+  bool tty_;
+  std::string what_;
+  std::mutex mutex_;
+  Clock::time_point start_ = Clock::now();
+  Clock::time_point last_ = Clock::now();
+};
+
+// Checks every output path before the run starts, so that a typo does not cost the run.
+void CheckOutputs(const std::string& json, const std::string& csv, const std::string& plot) {
+  if (!json.empty()) mirage::io::CheckWritableFile(json, "--json");
+  if (!csv.empty()) mirage::io::CheckWritableDirectory(csv, "--csv");
+  if (!plot.empty()) mirage::io::CheckWritableFile(plot, "--plot");
+}
+
+// The closing line: which files the run wrote.
+void PrintWritten(bool quiet, const std::vector<std::string>& files) {
+  if (quiet || files.empty()) return;
+  std::string list;
+  for (const auto& f : files) list += (list.empty() ? "" : ", ") + f;
+  std::fprintf(stderr, "mirage: wrote %s\n", list.c_str());
 }
 
 // A cooperative grid (issue 5): every variant `runs` times on both cores, with a progress bar.
 int RunCoop(const RunArgs& args, const mirage::io::ScenarioOverrides& overrides) {
   const auto scenario = mirage::io::LoadCoopScenario(args.scenario, overrides);
   const auto& config = scenario.config;
-  const bool show_progress = !args.quiet && isatty(STDERR_FILENO) != 0;
-  std::mutex progress_mutex;
-  const auto progress = [&](int done, int total) {
-    if (!show_progress) return;
-    const std::lock_guard<std::mutex> lock(progress_mutex);
-    constexpr int kWidth = 40;
-    const int filled = done * kWidth / std::max(1, total);
-    std::fprintf(stderr, "\r[%s%s] %d/%d", std::string(static_cast<std::size_t>(filled), '#').c_str(),
-                 std::string(static_cast<std::size_t>(kWidth - filled), '.').c_str(), done, total);
-    if (done == total) std::fprintf(stderr, "\n");
-  };
-  const auto result = mirage::pipeline::RunCoopExperiment(config, progress);
+  CheckOutputs(args.json, args.csv, args.plot);
+  Progress progress(args.quiet, "runs");
+  const auto result = mirage::pipeline::RunCoopExperiment(config, std::ref(progress));
   const auto summary = mirage::pipeline::SummarizeCoop(result);
   if (!args.quiet) std::cout << mirage::io::FormatCoopTable(config, summary) << std::flush;
+  std::vector<std::string> written;
   if (!args.json.empty()) {
     mirage::io::WriteJson(args.json, mirage::io::MakeCoopJson(args.scenario, config, result, summary));
+    written.push_back(args.json);
   }
-  if (!args.csv.empty()) mirage::io::WriteCoopCsv(args.csv, summary);
+  if (!args.csv.empty()) {
+    for (const auto& f : mirage::io::WriteCoopCsv(args.csv, config, result, summary)) written.push_back(f);
+  }
   if (!args.plot.empty()) {
-    mirage::io::RenderPlot(args.plot, CoopPlotScript(), mirage::io::CoopPlotData(config, result, summary));
+    mirage::io::RenderPlot(args.plot, PlotScript("MIRAGE_COOP_PLOT_SCRIPT", "plot_coop.py"),
+                           mirage::io::CoopPlotData(config, result, summary));
+    written.push_back(args.plot);
   }
+  PrintWritten(args.quiet, written);
   return 0;
 }
 
 int Run(const RunArgs& args) {
   mirage::io::ScenarioOverrides overrides;
   overrides.runs = args.runs;
-  overrides.seed = args.seed;
+  overrides.seed = ParseSeed(args.seed);
   overrides.threads = args.threads;
   if (mirage::io::IsCoopScenario(args.scenario)) return RunCoop(args, overrides);
   const auto scenario = mirage::io::LoadScenario(args.scenario, overrides);
+  CheckOutputs(args.json, args.csv, args.plot);
 
-  const bool show_progress = !args.quiet && isatty(STDERR_FILENO) != 0;
-  std::mutex progress_mutex;
-  const auto progress = [&](int done, int total) {
-    if (!show_progress) return;
-    const std::lock_guard<std::mutex> lock(progress_mutex);
-    std::fprintf(stderr, "\rrun %d/%d", done, total);
-    if (done == total) std::fprintf(stderr, "\n");
-  };
-  const auto result = mirage::pipeline::RunMintExperiment(scenario.mint, progress);
+  Progress progress(args.quiet, "runs");
+  const auto result = mirage::pipeline::RunMintExperiment(scenario.mint, std::ref(progress));
   const auto summary = mirage::pipeline::Summarize(scenario.mint, result);
 
   if (!args.quiet) std::cout << mirage::io::FormatResultTable(scenario, summary) << std::flush;
-  if (!args.json.empty()) mirage::io::WriteJson(args.json, mirage::io::MakeJsonReport(scenario, result, summary));
-  if (!args.csv.empty()) mirage::io::WriteCsv(args.csv, scenario, result);
-  if (!args.plot.empty()) mirage::io::WritePlot(args.plot, PlotScript(), scenario, result, summary);
+  std::vector<std::string> written;
+  if (!args.json.empty()) {
+    mirage::io::WriteJson(args.json, mirage::io::MakeJsonReport(scenario, result, summary));
+    written.push_back(args.json);
+  }
+  if (!args.csv.empty()) {
+    for (const auto& f : mirage::io::WriteCsv(args.csv, scenario, result)) written.push_back(f);
+  }
+  if (!args.plot.empty()) {
+    mirage::io::WritePlot(args.plot, PlotScript("MIRAGE_PLOT_SCRIPT", "plot_run.py"), scenario, result, summary);
+    written.push_back(args.plot);
+  }
+  PrintWritten(args.quiet, written);
   return 0;
 }
 
@@ -123,7 +196,7 @@ int Run(const RunArgs& args) {
 // the Monte-Carlo driver's tracker sees in that run.
 int Simulate(const SimulateArgs& args) {
   mirage::io::ScenarioOverrides overrides;
-  overrides.seed = args.seed;
+  overrides.seed = ParseSeed(args.seed);
   if (mirage::io::IsCoopScenario(args.scenario)) {
     throw mirage::io::InputError(args.scenario + ": method coop has no recorded-data form; use mirage run");
   }
@@ -149,6 +222,7 @@ int Simulate(const SimulateArgs& args) {
     throw mirage::io::InputError(
         fmt::format("--run: {} is out of range, expected [0, {}] (the scenario's runs)", args.run, config.runs - 1));
   }
+  mirage::io::CheckWritableDirectory(args.out, "--out");
   const auto recording = mirage::pipeline::SimulateRecording(config, trajectory, args.run);
   mirage::io::WriteRecording(args.out, recording);
   mirage::io::WriteRecordedScenario(args.scenario, args.out, config.name + " (recorded)");
@@ -170,11 +244,12 @@ int Simulate(const SimulateArgs& args) {
 int main(int argc, char** argv) {
   CLI::App app{"mirage: multipath-assisted, NLOS-robust indoor localization"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", std::string("mirage ") + MIRAGE_VERSION);
   RunArgs args;
   auto* run = app.add_subcommand("run", "simulate (or read) the scenario, run its method, report the result");
   run->add_option("scenario", args.scenario, "scenario file (YAML)")->required();
   run->add_option("--runs", args.runs, "Monte-Carlo runs per trajectory (overrides the scenario)");
-  run->add_option("--seed", args.seed, "master seed (overrides the scenario)");
+  run->add_option("--seed", args.seed, "master seed, an integer in [0, 2^64 - 1] (overrides the scenario)");
   run->add_option("--threads", args.threads, "worker threads, 0 = all cores (results do not depend on it)");
   run->add_option("--json", args.json, "write the JSON report to this file");
   run->add_option("--csv", args.csv, "write tracks.csv, runs.csv, paths.csv, virtual_anchors.csv into this directory");
@@ -185,15 +260,22 @@ int main(int argc, char** argv) {
   auto* simulate = app.add_subcommand("simulate", "simulate one run and write it as recorded data (CSV) with a scenario that runs it");
   simulate->add_option("scenario", sim.scenario, "scenario file (YAML)")->required();
   simulate->add_option("--out", sim.out, "output directory")->required();
-  simulate->add_option("--seed", sim.seed, "master seed (overrides the scenario)");
+  simulate->add_option("--seed", sim.seed, "master seed, an integer in [0, 2^64 - 1] (overrides the scenario)");
   simulate->add_option("--trajectory", sim.trajectory, "trajectory name (default: the first)");
   simulate->add_option("--run", sim.run, "Monte-Carlo run index (start offset and random streams), default 0");
   simulate->add_flag("--quiet", sim.quiet, "print nothing but errors");
 
   try {
     app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
+  } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    app.exit(e);  // prints the message and the usage hint
+    return 2;     // every usage error is a bad input (CLI11's own codes are 100+)
   }
   try {
     if (run->parsed()) return Run(args);

@@ -1,11 +1,13 @@
 // SPDX-License-Identifier: MIT
 #include "mirage/io/coop_report.h"
 
+#include <cmath>
 #include <filesystem>
 #include <sstream>
 
 #include <fmt/format.h>
 
+#include "mirage/eval/error_stats.h"
 #include "mirage/io/input_error.h"
 #include "mirage/io/output_file.h"
 
@@ -80,12 +82,16 @@ json MakeCoopJson(const std::string& scenario_file, const pipeline::CoopExperime
             {"steps_per_s", result.wall_s > 0.0 ? total_runs * static_cast<double>(config.steps) / result.wall_s : 0.0}}}};
 }
 
-void WriteCoopCsv(const std::string& dir, const std::vector<pipeline::CoopVariantSummary>& summary) {
+std::vector<std::string> WriteCoopCsv(const std::string& dir, const pipeline::CoopExperimentConfig& config,
+                                      const pipeline::CoopExperimentResult& result,
+                                      const std::vector<pipeline::CoopVariantSummary>& summary) {
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
   if (ec) throw InputError(dir + ": cannot create the CSV directory: " + ec.message());
+  std::vector<std::string> written;
   {
-    auto out = OpenForWriting(dir + "/variants.csv");
+    OutputFile out_file(dir + "/variants.csv");
+    auto& out = out_file.stream();
     out << "variant,agents,anchor,pulse_duration_ns,wall_error_mm,biased_wall,wall_update,wall_sigma_mm,runs,"
            "error_p50_m,error_p90_m,error_rmse_m,relative_p90_m,final_mean_m,final_p90_m,diverged_runs,peb_rms_m,"
            "rmse_over_peb,biased_wall_final_mean_abs_m,wall_rms_error_m,associated_per_step,expected_per_step\n";
@@ -98,17 +104,71 @@ void WriteCoopCsv(const std::string& dir, const std::vector<pipeline::CoopVarian
                          s.has_bias ? fmt::format("{:.6f}", s.bias_final_mean_abs_m) : "", s.wall_rms_mean_m,
                          s.associated_per_step, s.expected_per_step);
     }
-    FinishWriting(out, dir + "/variants.csv");
+    out_file.Commit();
+    written.push_back(out_file.path());
   }
-  auto out = OpenForWriting(dir + "/error_by_step.csv");
-  out << "variant,step,mean_error_m,peb_m\n";
-  for (const auto& s : summary) {
-    for (std::size_t n = 0; n < s.error_by_step_m.size(); ++n) {
-      out << fmt::format("{},{},{:.6f},{:.6f}\n", s.name, n, s.error_by_step_m[n],
-                         n < s.peb_by_step_m.size() ? s.peb_by_step_m[n] : 0.0);
+  {
+    OutputFile out_file(dir + "/error_by_step.csv");
+    auto& out = out_file.stream();
+    out << "variant,step,mean_error_m,peb_m\n";
+    for (const auto& s : summary) {
+      for (std::size_t n = 0; n < s.error_by_step_m.size(); ++n) {
+        out << fmt::format("{},{},{:.6f},{:.6f}\n", s.name, n, s.error_by_step_m[n],
+                           n < s.peb_by_step_m.size() ? s.peb_by_step_m[n] : 0.0);
+      }
     }
+    out_file.Commit();
+    written.push_back(out_file.path());
   }
-  FinishWriting(out, dir + "/error_by_step.csv");
+  // Per step of every run: one row per agent, for the steps with an update (1..N, at t = n s).
+  // The columns of the MINT report's tracks.csv, led by the variant's index in the grid.
+  {
+    OutputFile out_file(dir + "/tracks.csv");
+    auto& out = out_file.stream();
+    out << "variant,trajectory,run,step,t_s,x_true_m,y_true_m,x_est_m,y_est_m,error_m,sigma_x_m,sigma_y_m,peb_m,"
+           "associations,relocalized\n";
+    for (std::size_t v = 0; v < result.variants.size(); ++v) {
+      const auto& variant = result.variants[v];
+      for (std::size_t r = 0; r < variant.runs.size(); ++r) {
+        const auto& run = variant.runs[r];
+        for (std::size_t a = 0; a < static_cast<std::size_t>(variant.variant.agents); ++a) {
+          for (std::size_t n = 1; n < run.estimate_m.size(); ++n) {
+            const Vec2& truth = result.truth_m[a][n];
+            const Vec2& estimate = run.estimate_m[n][a];
+            const Eigen::Matrix2d& covariance = run.covariance_m2[n][a];
+            out << fmt::format("{},{},{},{},{:.3f},{:.5f},{:.5f},{:.5f},{:.5f},{:.5f},{:.5f},{:.5f},{:.5f},{},0\n", v,
+                               config.agents[a].name, r, n - 1, static_cast<double>(n), truth.x(), truth.y(),
+                               estimate.x(), estimate.y(), run.error_m[n][a], std::sqrt(covariance(0, 0)),
+                               std::sqrt(covariance(1, 1)), variant.peb_m[n][a], run.associated[n]);
+          }
+        }
+      }
+    }
+    out_file.Commit();
+    written.push_back(out_file.path());
+  }
+  {
+    OutputFile out_file(dir + "/runs.csv");
+    auto& out = out_file.stream();
+    out << "variant,trajectory,run,offset_x_m,offset_y_m,steps,rmse_m,p90_m,diverged\n";
+    const eval::DivergenceRule rule;
+    for (std::size_t v = 0; v < result.variants.size(); ++v) {
+      const auto& variant = result.variants[v];
+      for (std::size_t r = 0; r < variant.runs.size(); ++r) {
+        const auto& run = variant.runs[r];
+        for (std::size_t a = 0; a < static_cast<std::size_t>(variant.variant.agents); ++a) {
+          std::vector<double> errors;
+          for (std::size_t n = 1; n < run.error_m.size(); ++n) errors.push_back(run.error_m[n][a]);
+          const auto e = eval::ComputeErrorStats(errors);
+          out << fmt::format("{},{},{},{:.4f},{:.4f},{},{:.5f},{:.5f},{}\n", v, config.agents[a].name, r, 0.0, 0.0,
+                             errors.size(), e.rmse, e.p90, eval::IsDiverged(errors, rule) ? 1 : 0);
+        }
+      }
+    }
+    out_file.Commit();
+    written.push_back(out_file.path());
+  }
+  return written;
 }
 
 json CoopPlotData(const pipeline::CoopExperimentConfig& config, const pipeline::CoopExperimentResult& result,

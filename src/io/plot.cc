@@ -127,11 +127,20 @@ void RenderPlot(const std::string& png_path, const std::string& script_path, con
   const std::string data_path = png_path + ".json";
   WriteJson(data_path, data);
   if (!std::filesystem::exists(script_path)) throw InputError(script_path + ": plotting script not found");
-  const int status = Run({Interpreter(), script_path, data_path, png_path});
+  // Rendered beside the target under a temporary name with the same extension (matplotlib picks
+  // the format from it) and renamed once complete, so a failed render leaves no half picture.
+  const std::filesystem::path target(png_path);
+  const std::filesystem::path temporary =
+      target.parent_path() / (".tmp-" + std::to_string(::getpid()) + "-" + target.filename().string());
+  const int status = Run({Interpreter(), script_path, data_path, temporary.string()});
+  std::error_code ec;
   if (status != 0) {
+    std::filesystem::remove(temporary, ec);
     throw InputError(png_path + ": the plot renderer failed (exit " + std::to_string(status) + "); " + Interpreter() +
                      " needs matplotlib (Debian: python3-matplotlib)");
   }
+  std::filesystem::rename(temporary, target, ec);
+  if (ec) throw InputError(png_path + ": cannot replace the file (" + ec.message() + ")");
 }
 
 void WritePlot(const std::string& png_path, const std::string& script_path, const Scenario& scenario,

@@ -18,6 +18,11 @@ namespace {
 std::string ReadFile(const std::string& path) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) throw InputError(path + ": is a directory, expected a CSV file");
+  // A device, pipe or socket (a link to /dev/zero) would be read without end.
+  if (!std::filesystem::is_regular_file(path, ec)) {
+    throw InputError(path + (std::filesystem::exists(path, ec) ? ": not a regular file, expected a CSV file"
+                                                               : ": cannot open (no such file)"));
+  }
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path + ": cannot open");
   std::ostringstream text;
@@ -115,7 +120,8 @@ void WriteRecording(const std::string& dir, const pipeline::Recording& recording
   if (ec) throw InputError(dir + ": cannot create the directory (" + ec.message() + ")");
   {
     const std::string path = dir + "/anchors.csv";
-    auto out = OpenForWriting(path);
+    OutputFile out_file(path);
+    auto& out = out_file.stream();
     const bool with_z = !recording.anchor_heights_m.empty() && recording.anchor_heights_m.front().has_value();
     out << (with_z ? "anchor_id,x_m,y_m,z_m\n" : "anchor_id,x_m,y_m\n");
     for (std::size_t a = 0; a < recording.anchor_ids.size(); ++a) {
@@ -123,11 +129,12 @@ void WriteRecording(const std::string& dir, const pipeline::Recording& recording
       if (with_z) out << fmt::format(",{}", recording.anchor_heights_m[a].value_or(0.0));
       out << "\n";
     }
-    FinishWriting(out, path);
+    out_file.Commit();
   }
   {
     const std::string path = dir + "/ranges.csv";
-    auto out = OpenForWriting(path);
+    OutputFile out_file(path);
+    auto& out = out_file.stream();
     out << "t_s,anchor_id,range_m,amplitude\n";
     for (const auto& step : recording.steps) {
       for (const auto& anchor : step.anchors) {
@@ -138,14 +145,15 @@ void WriteRecording(const std::string& dir, const pipeline::Recording& recording
         }
       }
     }
-    FinishWriting(out, path);
+    out_file.Commit();
   }
   if (recording.has_truth()) {
     const std::string path = dir + "/truth.csv";
-    auto out = OpenForWriting(path);
+    OutputFile out_file(path);
+    auto& out = out_file.stream();
     out << "t_s,x_m,y_m\n";
     for (const auto& s : recording.truth) out << fmt::format("{},{},{}\n", s.t_s, s.position_m.x(), s.position_m.y());
-    FinishWriting(out, path);
+    out_file.Commit();
   }
 }
 

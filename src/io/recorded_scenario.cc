@@ -33,10 +33,11 @@ void WriteRecordedScenario(const std::string& scenario_path, const std::string& 
   YAML::Emitter emitter;
   emitter << out;
   const std::string path = dir + "/scenario.yaml";
-  auto file = OpenForWriting(path);
+  OutputFile output(path);
+  auto& file = output.stream();
   file << "# Written by `mirage simulate " << scenario_path << "`: runs the recording in this directory.\n"
        << emitter.c_str() << "\n";
-  FinishWriting(file, path);
+  output.Commit();
 }
 
 }  // namespace mirage::io

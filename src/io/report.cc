@@ -185,15 +185,19 @@ std::string FormatResultTable(const Scenario& scenario, const pipeline::MintSumm
 }
 
 void WriteJson(const std::string& path, const nlohmann::json& json) {
-  auto out = OpenForWriting(path);
+  OutputFile out_file(path);
+  auto& out = out_file.stream();
   out << json.dump(2) << "\n";
-  FinishWriting(out, path);
+  out_file.Commit();
 }
 
-void WriteCsv(const std::string& dir, const Scenario& scenario, const pipeline::MintExperimentResult& result) {
+std::vector<std::string> WriteCsv(const std::string& dir, const Scenario& scenario,
+                                  const pipeline::MintExperimentResult& result) {
   const auto& config = scenario.mint;
+  std::vector<std::string> written;
   {
-    auto out = OpenForWriting(dir + "/tracks.csv");
+    OutputFile out_file(dir + "/tracks.csv");
+    auto& out = out_file.stream();
     out << "trajectory,run,step,t_s,x_true_m,y_true_m,x_est_m,y_est_m,error_m,sigma_x_m,sigma_y_m,peb_m,associations,"
            "relocalized\n";
     for (const auto& run : result.runs) {
@@ -211,10 +215,12 @@ void WriteCsv(const std::string& dir, const Scenario& scenario, const pipeline::
                            s.peb_m ? fmt::format("{:.5f}", *s.peb_m) : "", s.associations, s.relocalized ? 1 : 0);
       }
     }
-    FinishWriting(out, dir + "/tracks.csv");
+    out_file.Commit();
+    written.push_back(out_file.path());
   }
   {
-    auto out = OpenForWriting(dir + "/runs.csv");
+    OutputFile out_file(dir + "/runs.csv");
+    auto& out = out_file.stream();
     out << "trajectory,run,offset_x_m,offset_y_m,steps,rmse_m,p90_m,diverged\n";
     for (const auto& run : result.runs) {
       const auto errors = pipeline::StepErrors(run.steps);
@@ -225,12 +231,14 @@ void WriteCsv(const std::string& dir, const Scenario& scenario, const pipeline::
                          run.offset_m.y(), run.steps.size(), known ? fmt::format("{:.5f}", e.rmse) : "",
                          known ? fmt::format("{:.5f}", e.p90) : "", known ? (run.diverged ? "1" : "0") : "");
     }
-    FinishWriting(out, dir + "/runs.csv");
+    out_file.Commit();
+    written.push_back(out_file.path());
   }
   {
     // The per-path ground truth of the first run of each trajectory (all runs would be tens of
     // megabytes): delay, amplitude, true and estimated SINR of every visible specular path.
-    auto out = OpenForWriting(dir + "/paths.csv");
+    OutputFile out_file(dir + "/paths.csv");
+    auto& out = out_file.stream();
     out << "trajectory,run,step,anchor_id,va_id,order,delay_s,range_m,amplitude_re,amplitude_im,true_sinr_db,"
            "estimated_sinr_db\n";
     for (const auto& run : result.runs) {
@@ -243,11 +251,13 @@ void WriteCsv(const std::string& dir, const Scenario& scenario, const pipeline::
                            p.true_sinr_db, p.estimated_sinr_db ? fmt::format("{:.2f}", *p.estimated_sinr_db) : "");
       }
     }
-    FinishWriting(out, dir + "/paths.csv");
+    out_file.Commit();
+    written.push_back(out_file.path());
   }
   if (config.method == pipeline::Method::kSlam) {
     // The SLAM map at the end of every run, with the match to the true VAs.
-    auto out = OpenForWriting(dir + "/map.csv");
+    OutputFile out_file(dir + "/map.csv");
+    auto& out = out_file.stream();
     out << "trajectory,run,va_id,anchor_id,origin,order,x_m,y_m,cov_xx_m2,cov_xy_m2,cov_yy_m2,sigma_range_m,"
            "associations,discovered_step,filtered\n";
     for (const auto& run : result.runs) {
@@ -263,10 +273,12 @@ void WriteCsv(const std::string& dir, const Scenario& scenario, const pipeline::
                            va.associations, va.discovered_step, va.filtered ? 1 : 0);
       }
     }
-    FinishWriting(out, dir + "/map.csv");
+    out_file.Commit();
+    written.push_back(out_file.path());
   }
   {
-    auto out = OpenForWriting(dir + "/virtual_anchors.csv");
+    OutputFile out_file(dir + "/virtual_anchors.csv");
+    auto& out = out_file.stream();
     out << "va_id,anchor_id,order,x_m,y_m,walls,reflection_gain\n";
     for (const auto& va : result.known_vas.all()) {
       std::string walls;
@@ -278,8 +290,10 @@ void WriteCsv(const std::string& dir, const Scenario& scenario, const pipeline::
                          config.anchor_ids[static_cast<std::size_t>(va.anchor_index)], va.order, va.position_m.x(),
                          va.position_m.y(), walls, va.reflection_gain);
     }
-    FinishWriting(out, dir + "/virtual_anchors.csv");
+    out_file.Commit();
+    written.push_back(out_file.path());
   }
+  return written;
 }
 
 }  // namespace mirage::io

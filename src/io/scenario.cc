@@ -349,6 +349,9 @@ Scenario LoadScenario(const std::string& path, const ScenarioOverrides& override
     spec.dt_s = t.Number("dt_s", spec.dt_s);
     if (!(spec.dt_s > 0.0)) t.Fail("dt_s", FormatValue(spec.dt_s) + " s must be > 0 s (time steps go forward)");
     if (!IsPlainName(spec.name)) t.Fail("name", "must not contain commas, quotes or line breaks (it goes into CSV files)");
+    for (const auto& other : config.trajectories) {
+      if (other.name == spec.name) t.Fail("name", "duplicate trajectory name '" + spec.name + "' (names label the CSV rows)");
+    }
     const double length_m = geometry::PolylineLength(spec.waypoints_m);
     if (length_m < spec.speed_mps * spec.dt_s) {
       t.Fail("waypoints_m", "the trajectory is shorter than one step (speed_mps * dt_s)");

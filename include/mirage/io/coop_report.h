@@ -22,9 +22,12 @@ nlohmann::json MakeCoopJson(const std::string& scenario_file, const pipeline::Co
                             const pipeline::CoopExperimentResult& result,
                             const std::vector<pipeline::CoopVariantSummary>& summary);
 
-/// variants.csv (the summary table) and error_by_step.csv (mean error and bound per variant and
-/// step) in dir (created).
-void WriteCoopCsv(const std::string& dir, const std::vector<pipeline::CoopVariantSummary>& summary);
+/// variants.csv (the summary table), error_by_step.csv (mean error and bound per variant and
+/// step), and tracks.csv and runs.csv (per variant, agent, run and step, in the columns of the
+/// MINT report with a leading variant index) in dir (created); returns the paths written.
+std::vector<std::string> WriteCoopCsv(const std::string& dir, const pipeline::CoopExperimentConfig& config,
+                                      const pipeline::CoopExperimentResult& result,
+                                      const std::vector<pipeline::CoopVariantSummary>& summary);
 
 /// Data for tools/plot_coop.py: the room, true and estimated tracks of the first run of the
 /// first variant, and the error per variant.

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -24,7 +25,8 @@ std::string FormatResultTable(const Scenario& scenario, const pipeline::MintSumm
 void WriteJson(const std::string& path, const nlohmann::json& json);
 
 /// Writes tracks.csv, runs.csv, paths.csv (ground truth per specular path, first run of each
-/// trajectory) and virtual_anchors.csv (the tracker's VAs) into dir (created if needed).
-void WriteCsv(const std::string& dir, const Scenario& scenario, const pipeline::MintExperimentResult& result);
+/// trajectory) and virtual_anchors.csv (the tracker's VAs) into dir (created if needed); returns
+/// the paths written.
+std::vector<std::string> WriteCsv(const std::string& dir, const Scenario& scenario, const pipeline::MintExperimentResult& result);
 
 }  // namespace mirage::io
