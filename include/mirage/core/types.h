@@ -10,6 +10,8 @@ namespace mirage {
 
 /// 2-D vector, metres unless its name says otherwise.
 using Vec2 = Eigen::Vector2d;
+/// 3-D vector, metres unless its name says otherwise; z is up.
+using Vec3 = Eigen::Vector3d;
 /// Complex double, as used for baseband samples and path amplitudes.
 using Complex = std::complex<double>;
 
