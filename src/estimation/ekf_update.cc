@@ -2,6 +2,7 @@
 #include "mirage/estimation/ekf_update.h"
 
 #include <cassert>
+#include <vector>
 
 #include <Eigen/Cholesky>
 #include <Eigen/SparseCore>
@@ -9,12 +10,11 @@
 #include "mirage/estimation/covariance_ops.h"
 
 namespace mirage::estimation {
-
 namespace {
 
 template <typename Jacobian>
-UpdateResult Update(State& state, const Jacobian& H, const Eigen::VectorXd& innovation, const Eigen::MatrixXd& R,
-                    CovarianceForm form) {
+UpdateResult UpdateWith(State& state, const Jacobian& H, const Eigen::VectorXd& innovation, const Eigen::MatrixXd& R,
+                        CovarianceForm form) {
   UpdateResult result;
   const auto m = H.rows();
   assert(H.cols() == state.dimension() && innovation.size() == m && R.rows() == m && R.cols() == m);
@@ -43,14 +43,47 @@ UpdateResult Update(State& state, const Jacobian& H, const Eigen::VectorXd& inno
 
 }  // namespace
 
-UpdateResult EkfUpdate(State& state, const Eigen::MatrixXd& H, const Eigen::VectorXd& innovation,
-                       const Eigen::MatrixXd& R, CovarianceForm form) {
-  return Update(state, H, innovation, R, form);
+Eigen::SparseMatrix<double, Eigen::RowMajor> StackJacobian(const State& state, std::span<const MeasurementRow> rows) {
+  std::vector<Eigen::Triplet<double>> entries;
+  entries.reserve(rows.size() * 4);
+  for (std::size_t r = 0; r < rows.size(); ++r) {
+    const MeasurementRow& row = rows[r];
+    for (int b = 0; b < row.block_count; ++b) {
+      const auto ib = static_cast<std::size_t>(b);
+      assert(state.layout().At(row.keys[ib]).offset == row.offsets[ib]);  // built on this layout
+      for (int c = 0; c < row.sizes[ib]; ++c) {
+        entries.emplace_back(static_cast<int>(r), row.offsets[ib] + c, row.jacobians[ib](c));
+      }
+    }
+  }
+  Eigen::SparseMatrix<double, Eigen::RowMajor> H(static_cast<Eigen::Index>(rows.size()), state.dimension());
+  H.setFromTriplets(entries.begin(), entries.end());
+  return H;
+}
+
+UpdateResult Update(State& state, std::span<const MeasurementRow> rows, std::span<const double> innovations,
+                    const UpdateOptions& options) {
+  assert(innovations.size() == rows.size());
+  assert(options.weights.empty() || options.weights.size() == rows.size());
+  const auto m = static_cast<Eigen::Index>(rows.size());
+  Eigen::VectorXd nu(m);
+  Eigen::MatrixXd R = Eigen::MatrixXd::Zero(m, m);
+  for (Eigen::Index i = 0; i < m; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    nu(i) = innovations[k];
+    R(i, i) = options.weights.empty() ? rows[k].variance : rows[k].variance / options.weights[k];
+  }
+  return UpdateWith(state, StackJacobian(state, rows), nu, R, options.form);
 }
 
 UpdateResult EkfUpdate(State& state, const Eigen::SparseMatrix<double, Eigen::RowMajor>& H,
                        const Eigen::VectorXd& innovation, const Eigen::MatrixXd& R, CovarianceForm form) {
-  return Update(state, H, innovation, R, form);
+  return UpdateWith(state, H, innovation, R, form);
+}
+
+UpdateResult EkfUpdate(State& state, const Eigen::MatrixXd& H, const Eigen::VectorXd& innovation,
+                       const Eigen::MatrixXd& R, CovarianceForm form) {
+  return UpdateWith(state, H, innovation, R, form);
 }
 
 }  // namespace mirage::estimation

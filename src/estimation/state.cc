@@ -7,20 +7,39 @@
 
 namespace mirage::estimation {
 
-int StateLayout::Append(BlockKey key, int size) {
-  assert(!Find(key).has_value() && size > 0);
-  blocks_.push_back({key, dimension_, size});
-  dimension_ += size;
-  return blocks_.back().offset;
+int StateLayout::Append(const BlockType& type, int id) {
+  const BlockKey key(type, id);
+  assert(!Find(key).has_value() && type.dim > 0 && type.tangent_dim > 0);
+  assert(type.euclidean() ? type.dim == type.tangent_dim : type.boxminus != nullptr);
+  assert(std::all_of(blocks_.begin(), blocks_.end(),
+                     [&](const Block& b) { return b.key.type_id != type.id || b.type == &type; }));
+  Block block;
+  block.key = key;
+  block.type = &type;
+  block.offset = dimension_;
+  block.size = type.tangent_dim;
+  block.mean_offset = mean_dimension_;
+  block.mean_size = type.dim;
+  blocks_.push_back(block);
+  dimension_ += type.tangent_dim;
+  mean_dimension_ += type.dim;
+  if (!type.euclidean()) ++manifold_blocks_;
+  return block.offset;
 }
 
 void StateLayout::Remove(BlockKey key) {
   const auto it = std::find_if(blocks_.begin(), blocks_.end(), [&](const Block& b) { return b.key == key; });
   assert(it != blocks_.end());
   const int size = it->size;
-  for (auto later = it + 1; later != blocks_.end(); ++later) later->offset -= size;
+  const int mean_size = it->mean_size;
+  if (!it->type->euclidean()) --manifold_blocks_;
+  for (auto later = it + 1; later != blocks_.end(); ++later) {
+    later->offset -= size;
+    later->mean_offset -= mean_size;
+  }
   blocks_.erase(it);
   dimension_ -= size;
+  mean_dimension_ -= mean_size;
 }
 
 std::optional<Block> StateLayout::Find(BlockKey key) const {
@@ -38,13 +57,13 @@ Block StateLayout::At(BlockKey key) const {
 
 State::State(StateLayout layout, Eigen::VectorXd mean, Eigen::MatrixXd covariance, double t_s)
     : layout_(std::move(layout)), mean_(std::move(mean)), covariance_(std::move(covariance)), t_s_(t_s) {
-  assert(mean_.size() == layout_.dimension());
+  assert(mean_.size() == layout_.mean_dimension());
   assert(covariance_.rows() == layout_.dimension() && covariance_.cols() == layout_.dimension());
 }
 
 Eigen::VectorXd State::Mean(BlockKey key) const {
   const Block b = layout_.At(key);
-  return mean_.segment(b.offset, b.size);
+  return mean_.segment(b.mean_offset, b.mean_size);
 }
 
 Eigen::MatrixXd State::Covariance(BlockKey key) const {
@@ -54,8 +73,8 @@ Eigen::MatrixXd State::Covariance(BlockKey key) const {
 
 void State::SetMean(BlockKey key, const Eigen::VectorXd& value) {
   const Block b = layout_.At(key);
-  assert(value.size() == b.size);
-  mean_.segment(b.offset, b.size) = value;
+  assert(value.size() == b.mean_size);
+  mean_.segment(b.mean_offset, b.mean_size) = value;
 }
 
 }  // namespace mirage::estimation

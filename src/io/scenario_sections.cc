@@ -80,8 +80,8 @@ estimation::ConstantVelocityOptions ReadMotion(YamlMap m, const estimation::Cons
   return o;
 }
 
-methods::mint::VaVarianceOptions ReadVariance(YamlMap m, const methods::mint::VaVarianceOptions& defaults) {
-  methods::mint::VaVarianceOptions o = defaults;
+estimation::RangeVarianceOptions ReadVariance(YamlMap m, const estimation::RangeVarianceOptions& defaults) {
+  estimation::RangeVarianceOptions o = defaults;
   o.enabled = m.Boolean("enabled", o.enabled);
   o.window_min_m = m.NumberInRange("window_min_m", o.window_min_m, 1e-6, kHuge, "m");
   o.window_max_m = m.NumberInRange("window_max_m", o.window_max_m, 1e-6, kHuge, "m");

@@ -16,6 +16,7 @@
 #include "mirage/core/rng.h"
 #include "mirage/core/units.h"
 #include "mirage/estimation/ekf_update.h"
+#include "mirage/estimation/measurement_row.h"
 #include "mirage/estimation/motion/constant_velocity.h"
 #include "mirage/geometry/image_path.h"
 #include "mirage/geometry/trajectory.h"
@@ -153,16 +154,15 @@ std::vector<std::vector<double>> PositionErrorBound(const CoopExperimentConfig& 
   const std::vector<Vec2> start = AgentsAt(truth, agents, 0);
   model.Initialize(start, 0.0);
   estimation::State state = model.state();
-  const int n = state.dimension();
   const double sigma1_m = v.synthesizer->pulse().range_sigma_at_unit_sinr_m();
   const Vec2 anchor_m = config.anchor ? config.anchor->position_m : Vec2::Zero();
   std::vector<std::vector<double>> peb(static_cast<std::size_t>(config.steps) + 1);
   for (int step = 0; step <= config.steps; ++step) {
     if (step > 0) {
-      estimation::PropagateConstantVelocityAll(state, agents, step, methods::coop::CoopMotion(options, step - state.t_s()));
+      const estimation::ConstantVelocity motion(methods::coop::CoopMotion(options, step - state.t_s()), 2, agents);
+      estimation::Propagate(state, step, {&motion});
       const std::vector<Vec2> at = AgentsAt(truth, agents, step);
-      std::vector<Eigen::RowVectorXd> rows;
-      std::vector<double> variance;
+      std::vector<estimation::MeasurementRow> rows;
       for (std::size_t l = 0; l < v.links.size(); ++l) {
         const auto ends = methods::coop::AntennaPositions(v.links[l], at, anchor_m, config.antennas);
         const LinkChannel link_channel = SimulateLink(config, v.links[l], ends);
@@ -173,22 +173,18 @@ std::vector<std::vector<double>> PositionErrorBound(const CoopExperimentConfig& 
           const double sinr = v.synthesizer->TrueSinr(Complex(gain / length_m, 0.0), length_m / core::kSpeedOfLight_mps,
                                                       link_channel.dm_reference_m);
           // The model's layout is the layout of `state` (a copy of its initial state).
-          Eigen::RowVectorXd h = Eigen::RowVectorXd::Zero(n);
-          for (const auto& [column, value] : model.JacobianRow(v.links[l], path)) h(column) += value;
-          rows.push_back(h);
-          variance.push_back(sigma1_m * sigma1_m / std::max(sinr, 1e-12));
+          rows.push_back(model.JacobianRow(v.links[l], path, sigma1_m * sigma1_m / std::max(sinr, 1e-12)));
         }
       }
       if (!rows.empty()) {
-        Eigen::MatrixXd H(static_cast<int>(rows.size()), n);
-        for (std::size_t i = 0; i < rows.size(); ++i) H.row(static_cast<int>(i)) = rows[i];
-        const Eigen::MatrixXd R = Eigen::Map<const Eigen::VectorXd>(variance.data(), static_cast<int>(variance.size())).asDiagonal();
-        estimation::EkfUpdate(state, H, Eigen::VectorXd::Zero(H.rows()), R, estimation::CovarianceForm::kJoseph);
+        // Every path measured exactly at its mean: zero innovations, only the covariance moves.
+        const std::vector<double> zero(rows.size(), 0.0);
+        estimation::Update(state, rows, zero);
       }
     }
     for (int m = 0; m < agents; ++m) {
       peb[static_cast<std::size_t>(step)].push_back(
-          std::sqrt(state.Covariance({estimation::BlockKind::kPosition, m}).trace()));
+          std::sqrt(state.Covariance(estimation::BlockKey(estimation::blocks::kPosition, m)).trace()));
     }
   }
   return peb;

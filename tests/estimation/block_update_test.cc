@@ -13,10 +13,10 @@ namespace {
 // Agent position (offset 0), velocity (2) and two VAs (4, 6), with a random dense covariance.
 State RandomState(core::Rng& rng) {
   StateLayout layout;
-  layout.Append({BlockKind::kPosition, 0}, 2);
-  layout.Append({BlockKind::kVelocity, 0}, 2);
-  layout.Append({BlockKind::kVirtualAnchor, 1}, 2);
-  layout.Append({BlockKind::kVirtualAnchor, 2}, 2);
+  layout.Append(blocks::kPosition, 0);
+  layout.Append(blocks::kVelocity, 0);
+  layout.Append(blocks::kVirtualAnchor, 1);
+  layout.Append(blocks::kVirtualAnchor, 2);
   Eigen::MatrixXd A(8, 8);
   Eigen::VectorXd x(8);
   for (int i = 0; i < 8; ++i) {
@@ -73,8 +73,8 @@ TEST(BlockUpdate, KeepsTheVarianceOfARangeToAVaThatMovesWithTheAgent) {
   // Mixing the agent's posterior with the VA's prior blocks makes it negative: the stage-2 bug
   // this class replaced in SlamTracker.
   StateLayout layout;
-  layout.Append({BlockKind::kPosition, 0}, 2);
-  layout.Append({BlockKind::kVirtualAnchor, 1}, 2);
+  layout.Append(blocks::kPosition, 0);
+  layout.Append(blocks::kVirtualAnchor, 1);
   const Eigen::Matrix2d P_pp = Eigen::Vector2d(0.04 * 0.04, 0.03 * 0.03).asDiagonal();
   const Eigen::Matrix2d P_rls = Eigen::Matrix2d::Identity() * 0.005 * 0.005;
   Eigen::MatrixXd P(4, 4);

@@ -9,11 +9,11 @@
 namespace mirage::estimation {
 namespace {
 
-constexpr BlockKey kPos0{BlockKind::kPosition, 0};
-constexpr BlockKey kVel0{BlockKind::kVelocity, 0};
-constexpr BlockKey kVa3{BlockKind::kVirtualAnchor, 3};
-constexpr BlockKey kWall1{BlockKind::kWallOffset, 1};
-constexpr BlockKey kVa5{BlockKind::kVirtualAnchor, 5};
+constexpr BlockKey kPos0(blocks::kPosition, 0);
+constexpr BlockKey kVel0(blocks::kVelocity, 0);
+constexpr BlockKey kVa3(blocks::kVirtualAnchor, 3);
+constexpr BlockKey kWall1(blocks::kWallOffset, 1);
+constexpr BlockKey kVa5(blocks::kVirtualAnchor, 5);
 
 constexpr double kTol = 1e-12;
 
@@ -35,10 +35,10 @@ Eigen::MatrixXd RandomSpd(int n, core::Rng& rng) {
 State RandomState(std::uint64_t seed) {
   core::Rng rng(seed);
   StateLayout layout;
-  layout.Append(kPos0, 2);
-  layout.Append(kVel0, 2);
-  layout.Append(kVa3, 2);
-  layout.Append(kWall1, 1);
+  layout.Append(blocks::kPosition, 0);
+  layout.Append(blocks::kVelocity, 0);
+  layout.Append(blocks::kVirtualAnchor, 3);
+  layout.Append(blocks::kWallOffset, 1);
   return State(layout, RandomMatrix(7, 1, rng), RandomSpd(7, rng), 1.0);
 }
 
@@ -70,13 +70,12 @@ TEST(CovarianceOpsPropagateBlock, MatchesTheDenseProductIncludingCrossCovariance
   core::Rng rng(2);
   const Eigen::MatrixXd Q = RandomSpd(4, rng);
 
-  CovarianceOps::PropagateBlock(state, 0, F, Q, 1.3);
+  CovarianceOps::PropagateBlock(state, kPos0, F, Q);
 
   const Eigen::MatrixXd F_full = EmbedF(7, 0, F);
   const Eigen::MatrixXd expected_P = F_full * P0 * F_full.transpose() + EmbedQ(7, 0, Q);
   EXPECT_TRUE(state.covariance().isApprox(expected_P, kTol)) << state.covariance() << "\n\n" << expected_P;
   EXPECT_TRUE(state.mean().isApprox(F_full * x0, kTol));
-  EXPECT_DOUBLE_EQ(state.t_s(), 1.3);
   // The blocks after the agent: cross terms changed, their own covariance did not.
   EXPECT_FALSE(state.covariance().block(0, 4, 4, 3).isApprox(P0.block(0, 4, 4, 3), 1e-6));
   EXPECT_EQ(state.covariance().bottomRightCorner(3, 3), P0.bottomRightCorner(3, 3));
@@ -92,7 +91,7 @@ TEST(CovarianceOpsPropagateBlock, MatchesTheDenseProductForABlockInTheMiddle) {
   Eigen::Matrix2d Q;
   Q << 0.3, 0.1, 0.1, 0.2;
 
-  CovarianceOps::PropagateBlock(state, 4, F, Q, 2.0);
+  CovarianceOps::PropagateBlock(state, kVa3, F, Q);
 
   const Eigen::MatrixXd F_full = EmbedF(7, 4, F);
   EXPECT_TRUE(state.covariance().isApprox(F_full * P0 * F_full.transpose() + EmbedQ(7, 4, Q), kTol));
@@ -100,11 +99,12 @@ TEST(CovarianceOpsPropagateBlock, MatchesTheDenseProductForABlockInTheMiddle) {
   EXPECT_EQ(state.covariance().topLeftCorner(4, 4), P0.topLeftCorner(4, 4));
 }
 
-TEST(CovarianceOpsPropagateBlock, WithIdentityAndZeroNoiseChangesOnlyTheTime) {
+TEST(CovarianceOpsPropagateBlock, WithIdentityAndZeroNoiseChangesNothingAndStampSetsOnlyTheTime) {
   State state = RandomState(4);
   const State before = state;
 
-  CovarianceOps::PropagateBlock(state, 2, Eigen::MatrixXd::Identity(3, 3), Eigen::MatrixXd::Zero(3, 3), 5.0);
+  CovarianceOps::PropagateBlock(state, kVel0, Eigen::MatrixXd::Identity(3, 3), Eigen::MatrixXd::Zero(3, 3));
+  CovarianceOps::Stamp(state, 5.0);
 
   EXPECT_EQ(state.covariance(), before.covariance());
   EXPECT_EQ(state.mean(), before.mean());
@@ -184,7 +184,7 @@ TEST(CovarianceOpsJosephUpdate, KeepsTheCovariancePositiveDefinite) {
 
 TEST(CovarianceOpsSymmetrize, AveragesTheMatrixWithItsTranspose) {
   StateLayout layout;
-  layout.Append(kPos0, 2);
+  layout.Append(blocks::kPosition, 0);
   Eigen::Matrix2d P;
   P << 1, 2, 4, 3;
   State state(layout, Eigen::Vector2d(0, 0), P, 0.0);
@@ -209,7 +209,7 @@ TEST(CovarianceOpsAugment, AppendsTheBlockWithItsCrossCovariance) {
   Eigen::Matrix2d P_new;
   P_new << 4.0, 0.5, 0.5, 3.0;
 
-  CovarianceOps::Augment(state, kVa5, x_new, P_new_x, P_new);
+  CovarianceOps::Augment(state, blocks::kVirtualAnchor, 5, x_new, P_new_x, P_new);
 
   ASSERT_EQ(state.dimension(), 9);
   EXPECT_EQ(state.layout().At(kVa5).offset, 7);
@@ -227,7 +227,7 @@ TEST(CovarianceOpsMarginalize, UndoesAugment) {
   const State before = state;
   core::Rng rng(51);
 
-  CovarianceOps::Augment(state, kVa5, Eigen::Vector2d(1, 2), RandomMatrix(2, 7, rng), RandomSpd(2, rng));
+  CovarianceOps::Augment(state, blocks::kVirtualAnchor, 5, Eigen::Vector2d(1, 2), RandomMatrix(2, 7, rng), RandomSpd(2, rng));
   CovarianceOps::Marginalize(state, kVa5);
 
   EXPECT_EQ(state.dimension(), 7);

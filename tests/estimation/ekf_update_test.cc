@@ -13,18 +13,18 @@
 namespace mirage::estimation {
 namespace {
 
-constexpr BlockKey kPos0{BlockKind::kPosition, 0};
-constexpr BlockKey kWall0{BlockKind::kWallOffset, 0};
+constexpr BlockKey kPos0(blocks::kPosition, 0);
+constexpr BlockKey kWall0(blocks::kWallOffset, 0);
 
 State ScalarState(double mean, double variance) {
   StateLayout layout;
-  layout.Append(kWall0, 1);
+  layout.Append(blocks::kWallOffset, 0);
   return State(layout, Eigen::VectorXd::Constant(1, mean), Eigen::MatrixXd::Constant(1, 1, variance), 0.0);
 }
 
 State PositionState(const Eigen::Vector2d& mean, const Eigen::Matrix2d& P) {
   StateLayout layout;
-  layout.Append(kPos0, 2);
+  layout.Append(blocks::kPosition, 0);
   return State(layout, mean, P, 0.0);
 }
 
@@ -290,7 +290,7 @@ TEST(EkfUpdate, SparseJacobianAndStandardFormAgreeWithDenseJoseph) {
   Eigen::VectorXd x(n);
   for (int i = 0; i < n; ++i) x(i) = rng.Normal(0.0, 1.0);
   StateLayout layout;
-  for (int b = 0; b < n / 2; ++b) layout.Append({BlockKind::kVirtualAnchor, b}, 2);
+  for (int b = 0; b < n / 2; ++b) layout.Append(blocks::kVirtualAnchor, b);
   const State prior(layout, x, P, 0.0);
 
   const int m = 5;
@@ -320,6 +320,95 @@ TEST(EkfUpdate, SparseJacobianAndStandardFormAgreeWithDenseJoseph) {
   EXPECT_LT((dense_joseph.mean() - sparse_standard.mean()).norm(), 1e-10);
   EXPECT_LT((dense_joseph.covariance() - sparse_standard.covariance()).norm(), 1e-9);
   EXPECT_EQ(sparse_standard.covariance(), sparse_standard.covariance().transpose());
+}
+
+
+// ---------------------------------------------------------------------------------------------
+// The row-based update path
+// ---------------------------------------------------------------------------------------------
+
+// Two rows on [position | wall]: x-range and a row touching both blocks.
+std::vector<MeasurementRow> TwoRows(const State& state) {
+  const Block position = state.layout().At(kPos0);
+  const Block wall = state.layout().At(kWall0);
+  MeasurementRow a;
+  a.predicted = 1.0;
+  a.variance = 0.04;
+  a.Add(position, Eigen::RowVector2d(1.0, 0.0));
+  MeasurementRow b;
+  b.predicted = 2.0;
+  b.variance = 0.09;
+  b.Add(position, Eigen::RowVector2d(0.6, 0.8));
+  b.Add(wall, Eigen::Matrix<double, 1, 1>(-2.0));
+  return {a, b};
+}
+
+State PositionAndWall() {
+  StateLayout layout;
+  layout.Append(blocks::kPosition, 0);
+  layout.Append(blocks::kWallOffset, 0);
+  Eigen::Matrix3d P;
+  P << 0.5, 0.1, 0.05, 0.1, 0.4, -0.02, 0.05, -0.02, 0.01;
+  return State(layout, Eigen::Vector3d(1.0, 2.0, 0.1), P, 0.0);
+}
+
+TEST(Update, RowsGiveTheSamePosteriorAsTheirStackedMatrixForm) {
+  State by_rows = PositionAndWall();
+  State by_matrix = by_rows;
+  const auto rows = TwoRows(by_rows);
+  const std::vector<double> nu{0.3, -0.2};
+  Eigen::MatrixXd H(2, 3);
+  H << 1.0, 0.0, 0.0, 0.6, 0.8, -2.0;
+
+  const auto a = Update(by_rows, rows, nu);
+  const auto b = EkfUpdate(by_matrix, H, Eigen::Vector2d(0.3, -0.2), Eigen::Vector2d(0.04, 0.09).asDiagonal().toDenseMatrix());
+
+  ASSERT_TRUE(a.applied && b.applied);
+  EXPECT_NEAR(a.nis, b.nis, 1e-12);
+  EXPECT_TRUE(by_rows.mean().isApprox(by_matrix.mean(), 1e-12));
+  EXPECT_TRUE(by_rows.covariance().isApprox(by_matrix.covariance(), 1e-12));
+}
+
+TEST(Update, AWeightDividesTheRowsVarianceAsTheRobustHookPromises) {
+  // A weight of 0.25 on row 1 is the same update as row 1 with four times its variance.
+  State weighted = PositionAndWall();
+  State inflated = weighted;
+  auto rows = TwoRows(weighted);
+  const std::vector<double> nu{0.3, -0.2};
+  const std::vector<double> weights{1.0, 0.25};
+  UpdateOptions options;
+  options.weights = weights;
+
+  Update(weighted, rows, nu, options);
+  rows[1].variance *= 4.0;
+  Update(inflated, rows, nu);
+
+  EXPECT_TRUE(weighted.mean().isApprox(inflated.mean(), 1e-14));
+  EXPECT_TRUE(weighted.covariance().isApprox(inflated.covariance(), 1e-14));
+  // ... and not the unweighted update.
+  State plain = PositionAndWall();
+  Update(plain, TwoRows(plain), nu);
+  EXPECT_FALSE(plain.mean().isApprox(weighted.mean(), 1e-6));
+}
+
+TEST(InnovationVariance, EqualsHPHtPlusR) {
+  const State state = PositionAndWall();
+  const auto rows = TwoRows(state);
+  const Eigen::MatrixXd H = Eigen::MatrixXd(StackJacobian(state, rows));
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const Eigen::RowVectorXd h = H.row(static_cast<Eigen::Index>(i));
+    EXPECT_NEAR(InnovationVariance(state, rows[i]), (h * state.covariance() * h.transpose())(0, 0) + rows[i].variance, 1e-15);
+  }
+}
+
+TEST(MeasurementRow, ABlockAddedTwiceSumsIntoOneEntry) {
+  // A path that meets the same wall twice has two derivatives for its offset; they add.
+  const State state = PositionAndWall();
+  MeasurementRow row;
+  row.Add(state.layout().At(kWall0), Eigen::Matrix<double, 1, 1>(0.5));
+  row.Add(state.layout().At(kWall0), Eigen::Matrix<double, 1, 1>(-2.0));
+  EXPECT_EQ(row.block_count, 1);
+  EXPECT_DOUBLE_EQ(row.jacobians[0](0), -1.5);
 }
 
 }  // namespace

@@ -9,20 +9,20 @@
 namespace mirage::estimation {
 namespace {
 
-constexpr BlockKey kPos0{BlockKind::kPosition, 0};
-constexpr BlockKey kVel0{BlockKind::kVelocity, 0};
-constexpr BlockKey kVa7{BlockKind::kVirtualAnchor, 7};
-constexpr BlockKey kVa9{BlockKind::kVirtualAnchor, 9};
-constexpr BlockKey kWall2{BlockKind::kWallOffset, 2};
+constexpr BlockKey kPos0(blocks::kPosition, 0);
+constexpr BlockKey kVel0(blocks::kVelocity, 0);
+constexpr BlockKey kVa7(blocks::kVirtualAnchor, 7);
+constexpr BlockKey kVa9(blocks::kVirtualAnchor, 9);
+constexpr BlockKey kWall2(blocks::kWallOffset, 2);
 
 // [pos0 (2) | vel0 (2) | va7 (2) | wall2 (1) | va9 (2)] -> offsets 0, 2, 4, 6, 7; dimension 9.
 StateLayout FiveBlockLayout() {
   StateLayout layout;
-  layout.Append(kPos0, 2);
-  layout.Append(kVel0, 2);
-  layout.Append(kVa7, 2);
-  layout.Append(kWall2, 1);
-  layout.Append(kVa9, 2);
+  layout.Append(blocks::kPosition, 0);
+  layout.Append(blocks::kVelocity, 0);
+  layout.Append(blocks::kVirtualAnchor, 7);
+  layout.Append(blocks::kWallOffset, 2);
+  layout.Append(blocks::kVirtualAnchor, 9);
   return layout;
 }
 
@@ -41,10 +41,10 @@ void ExpectBlock(const StateLayout& layout, BlockKey key, int offset, int size) 
 TEST(StateLayout, AppendReturnsConsecutiveOffsetsAndGrowsTheDimension) {
   StateLayout layout;
 
-  EXPECT_EQ(layout.Append(kPos0, 2), 0);
-  EXPECT_EQ(layout.Append(kVel0, 2), 2);
-  EXPECT_EQ(layout.Append(kWall2, 1), 4);
-  EXPECT_EQ(layout.Append(kVa7, 2), 5);
+  EXPECT_EQ(layout.Append(blocks::kPosition, 0), 0);
+  EXPECT_EQ(layout.Append(blocks::kVelocity, 0), 2);
+  EXPECT_EQ(layout.Append(blocks::kWallOffset, 2), 4);
+  EXPECT_EQ(layout.Append(blocks::kVirtualAnchor, 7), 5);
   EXPECT_EQ(layout.dimension(), 7);
   ASSERT_EQ(layout.blocks().size(), 4U);
   EXPECT_EQ(layout.blocks()[2].key, kWall2);
@@ -55,10 +55,10 @@ TEST(StateLayout, FindDistinguishesKeysByKindAndId) {
 
   ExpectBlock(layout, kVa7, 4, 2);
   ExpectBlock(layout, kVa9, 7, 2);
-  EXPECT_FALSE(layout.Find({BlockKind::kVirtualAnchor, 8}).has_value());
-  EXPECT_FALSE(layout.Find({BlockKind::kPosition, 1}).has_value());
+  EXPECT_FALSE(layout.Find(BlockKey(blocks::kVirtualAnchor, 8)).has_value());
+  EXPECT_FALSE(layout.Find(BlockKey(blocks::kPosition, 1)).has_value());
   // Same id, other kind.
-  EXPECT_FALSE(layout.Find({BlockKind::kWallOffset, 7}).has_value());
+  EXPECT_FALSE(layout.Find(BlockKey(blocks::kWallOffset, 7)).has_value());
 }
 
 TEST(StateLayout, AtReturnsTheSameBlockAsFind) {
@@ -113,7 +113,7 @@ TEST(StateLayout, AppendAfterRemoveStartsAtTheNewEnd) {
   StateLayout layout = FiveBlockLayout();
   layout.Remove(kWall2);  // dimension 9 -> 8
 
-  const int offset = layout.Append(kWall2, 1);
+  const int offset = layout.Append(blocks::kWallOffset, 2);
 
   EXPECT_EQ(offset, 8);
   EXPECT_EQ(layout.dimension(), 9);

@@ -15,7 +15,7 @@
 #include "mirage/geometry/floor_plan.h"
 #include "mirage/io/scenario.h"
 #include "mirage/io/yaml_reader.h"
-#include "mirage/methods/mint/va_variance_estimator.h"
+#include "mirage/estimation/range_variance_estimator.h"
 
 namespace mirage::io {
 
@@ -65,7 +65,7 @@ channel::DiffuseOptions ReadDiffuse(YamlMap m);
 /// `mpc`.
 dsp::MpcExtractorOptions ReadMpc(YamlMap m);
 /// A `variance` section; absent keys take `defaults` (the method's own defaults).
-methods::mint::VaVarianceOptions ReadVariance(YamlMap m, const methods::mint::VaVarianceOptions& defaults = {});
+estimation::RangeVarianceOptions ReadVariance(YamlMap m, const estimation::RangeVarianceOptions& defaults = {});
 /// A `motion` section (constant-velocity model); absent keys take `defaults`.
 estimation::ConstantVelocityOptions ReadMotion(YamlMap m, const estimation::ConstantVelocityOptions& defaults = {});
 

@@ -4,6 +4,8 @@
 #include <cassert>
 #include <cmath>
 
+#include <Eigen/Core>
+
 #include "mirage/estimation/covariance_ops.h"
 
 namespace mirage::estimation {
@@ -16,37 +18,38 @@ std::vector<std::string> Validate(const ConstantVelocityOptions& options) {
   return problems;
 }
 
-namespace {
+ConstantVelocity::ConstantVelocity(const ConstantVelocityOptions& options, int dimension, int agents)
+    : options_(options), dimension_(dimension) {
+  assert((dimension == 2 || dimension == 3) && agents >= 0);
+  for (int m = 0; m < agents; ++m) agents_.push_back(m);
+}
 
-// Eq. (3.16) for one agent over dt, stamping the state with t_s.
-void Propagate(State& state, int agent, double dt, double t_s, const ConstantVelocityOptions& options) {
-  const Block position = state.layout().At({BlockKind::kPosition, agent});
-  assert(state.layout().At({BlockKind::kVelocity, agent}).offset == position.offset + 2);
+ConstantVelocity::ConstantVelocity(const ConstantVelocityOptions& options, int dimension, std::vector<int> agents)
+    : options_(options), dimension_(dimension), agents_(std::move(agents)) {
+  assert(dimension == 2 || dimension == 3);
+}
+
+void ConstantVelocity::Apply(State& state, double dt) const {
   assert(dt >= 0.0);
-  Eigen::Matrix4d F = Eigen::Matrix4d::Identity();
-  F(0, 2) = dt;
-  F(1, 3) = dt;
-  const double q = options.accel_sigma_mps2 * options.accel_sigma_mps2;
+  const int d = dimension_;
+  const BlockType& position_type = d == 2 ? blocks::kPosition : blocks::kPosition3;
+  [[maybe_unused]] const BlockType& velocity_type = d == 2 ? blocks::kVelocity : blocks::kVelocity3;
+  // Eq. (3.16): F = [[I, dt I], [0, I]] and the white-acceleration Q, per axis.
+  Eigen::MatrixXd F = Eigen::MatrixXd::Identity(2 * d, 2 * d);
+  Eigen::MatrixXd Q = Eigen::MatrixXd::Zero(2 * d, 2 * d);
+  const double q = options_.accel_sigma_mps2 * options_.accel_sigma_mps2;
   const double dt2 = dt * dt;
-  Eigen::Matrix4d Q = Eigen::Matrix4d::Zero();
-  for (int axis = 0; axis < 2; ++axis) {
+  for (int axis = 0; axis < d; ++axis) {
+    F(axis, axis + d) = dt;
     Q(axis, axis) = q * dt2 * dt2 / 4.0;
-    Q(axis, axis + 2) = Q(axis + 2, axis) = q * dt2 * dt / 2.0;
-    Q(axis + 2, axis + 2) = q * dt2;
+    Q(axis, axis + d) = Q(axis + d, axis) = q * dt2 * dt / 2.0;
+    Q(axis + d, axis + d) = q * dt2;
   }
-  CovarianceOps::PropagateBlock(state, position.offset, F, Q, t_s);
-}
-
-}  // namespace
-
-void PropagateConstantVelocity(State& state, int agent, double t_s, const ConstantVelocityOptions& options) {
-  Propagate(state, agent, t_s - state.t_s(), t_s, options);
-}
-
-void PropagateConstantVelocityAll(State& state, int agents, double t_s, const ConstantVelocityOptions& options) {
-  // dt is taken once: the first agent's propagation already stamps the state with t_s.
-  const double dt = t_s - state.t_s();
-  for (int m = 0; m < agents; ++m) Propagate(state, m, dt, t_s, options);
+  for (const int m : agents_) {
+    const BlockKey position(position_type, m);
+    assert(state.layout().At(BlockKey(velocity_type, m)).offset == state.layout().At(position).offset + d);
+    CovarianceOps::PropagateBlock(state, position, F, Q);
+  }
 }
 
 }  // namespace mirage::estimation

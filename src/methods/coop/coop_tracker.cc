@@ -2,23 +2,25 @@
 #include "mirage/methods/coop/coop_tracker.h"
 
 #include <algorithm>
+#include <array>
 #include <cassert>
 #include <cmath>
 #include <stdexcept>
 
-#include <Eigen/Sparse>
 #include <fmt/format.h>
 
 #include "mirage/core/constants.h"
 #include "mirage/estimation/covariance_ops.h"
-#include "mirage/estimation/hungarian.h"
+#include "mirage/estimation/gates/chi2_gate.h"
+#include "mirage/estimation/meas/image_path_range.h"
 #include "mirage/estimation/motion/constant_velocity.h"
+#include "mirage/estimation/range_association.h"
 
 namespace mirage::methods::coop {
 namespace {
 
 using estimation::BlockKey;
-using estimation::BlockKind;
+namespace blocks = estimation::blocks;
 
 // The wall moved by `offset_m` along its normal (geometry::WallNormal), so that
 // d length / d offset is ImagePath::d_offset.
@@ -32,8 +34,8 @@ geometry::Wall Shifted(const geometry::Wall& wall, double offset_m) {
 
 }  // namespace
 
-mint::VaVarianceOptions CoopOptions::DefaultVariance() {
-  mint::VaVarianceOptions v;
+estimation::RangeVarianceOptions CoopOptions::DefaultVariance() {
+  estimation::RangeVarianceOptions v;
   v.window_min_m = 0.1;   // half the window: samples of one place are correlated
   v.window_max_m = 0.2;   // Sec. IV-B: "within a distance (along the agent track) of 0.2 m"
   v.min_samples = 5;      // 8 steps fill 0.2 m at 2.5 cm per step
@@ -61,7 +63,7 @@ std::vector<std::string> Validate(const CoopOptions& o) {
   if (!(o.innovation_gate_sigma >= 0.0) || !std::isfinite(o.innovation_gate_sigma)) {
     problems.push_back("innovation_gate_sigma must be >= 0");
   }
-  for (auto& p : mint::Validate(o.variance)) problems.push_back("variance: " + p);
+  for (auto& p : estimation::Validate(o.variance)) problems.push_back("variance: " + p);
   return problems;
 }
 
@@ -98,25 +100,25 @@ void CoopTracker::Initialize(std::span<const Vec2> positions_m, double t_s) {
   }
   estimation::StateLayout layout;
   for (int m = 0; m < agents_; ++m) {
-    layout.Append({BlockKind::kPosition, m}, 2);
-    layout.Append({BlockKind::kVelocity, m}, 2);
+    layout.Append(blocks::kPosition, m);
+    layout.Append(blocks::kVelocity, m);
   }
   const int walls = static_cast<int>(provided_plan_.walls().size());
   if (options_.wall_update) {
-    for (int s = 0; s < walls; ++s) layout.Append({BlockKind::kWallOffset, s}, 1);
+    for (int s = 0; s < walls; ++s) layout.Append(blocks::kWallOffset, s);
   }
   const int n = layout.dimension();
   Eigen::VectorXd mean = Eigen::VectorXd::Zero(n);
   Eigen::VectorXd variance = Eigen::VectorXd::Zero(n);
   for (int m = 0; m < agents_; ++m) {
-    const int p = layout.At({BlockKind::kPosition, m}).offset;
-    const int v = layout.At({BlockKind::kVelocity, m}).offset;
+    const int p = layout.At(BlockKey(blocks::kPosition, m)).offset;
+    const int v = layout.At(BlockKey(blocks::kVelocity, m)).offset;
     mean.segment<2>(p) = positions_m[static_cast<std::size_t>(m)];
     variance.segment<2>(p).setConstant(options_.agent_sigma_m * options_.agent_sigma_m);
     variance.segment<2>(v).setConstant(options_.velocity_sigma_mps * options_.velocity_sigma_mps);
   }
   if (options_.wall_update) {
-    const int w = layout.At({BlockKind::kWallOffset, 0}).offset;
+    const int w = layout.At(BlockKey(blocks::kWallOffset, 0)).offset;
     variance.segment(w, walls).setConstant(options_.wall_sigma_m * options_.wall_sigma_m);
   }
   // Sec. IV-B: no initial cross-covariances.
@@ -125,20 +127,20 @@ void CoopTracker::Initialize(std::span<const Vec2> positions_m, double t_s) {
   history_ids_.clear();
 }
 
-Vec2 CoopTracker::Position(int agent) const { return state_.Mean({BlockKind::kPosition, agent}); }
+Vec2 CoopTracker::Position(int agent) const { return state_.Mean(BlockKey(blocks::kPosition, agent)); }
 
 Eigen::Matrix2d CoopTracker::PositionCovariance(int agent) const {
-  return state_.Covariance({BlockKind::kPosition, agent});
+  return state_.Covariance(BlockKey(blocks::kPosition, agent));
 }
 
 double CoopTracker::WallOffset(int wall) const {
   if (!options_.wall_update) return 0.0;
-  return state_.mean()(state_.layout().At({BlockKind::kWallOffset, wall}).offset);
+  return state_.mean()(state_.layout().At(BlockKey(blocks::kWallOffset, wall)).offset);
 }
 
 double CoopTracker::WallOffsetSigma(int wall) const {
   if (!options_.wall_update) return 0.0;
-  const int i = state_.layout().At({BlockKind::kWallOffset, wall}).offset;
+  const int i = state_.layout().At(BlockKey(blocks::kWallOffset, wall)).offset;
   return std::sqrt(state_.covariance()(i, i));
 }
 
@@ -200,26 +202,20 @@ std::vector<ExpectedPath> CoopTracker::ExpectedPaths(int link_index, std::span<c
   return kept;
 }
 
-std::vector<std::pair<int, double>> CoopTracker::JacobianRow(const Link& link, const ExpectedPath& expected) const {
-  const auto position_column = [&](int agent) { return state_.layout().At({BlockKind::kPosition, agent}).offset; };
-  const geometry::ImagePath& path = expected.path;
-  std::vector<std::pair<int, double>> row;
-  Vec2 d_rx = path.d_rx;
-  if (link.kind == LinkKind::kSelf) {
-    d_rx += path.d_tx;  // the total derivative (I - Phi^T) u of App. C
-  } else if (link.kind == LinkKind::kRelative) {
-    const int c = position_column(link.tx_agent);
-    row.emplace_back(c, path.d_tx.x());
-    row.emplace_back(c + 1, path.d_tx.y());
-  }
-  const int c = position_column(link.rx_agent);
-  row.emplace_back(c, d_rx.x());
-  row.emplace_back(c + 1, d_rx.y());
+estimation::MeasurementRow CoopTracker::JacobianRow(const Link& link, const ExpectedPath& expected, double variance_m2) const {
+  const auto position = [&](int agent) -> std::optional<estimation::Block> {
+    return state_.layout().At(BlockKey(blocks::kPosition, agent));
+  };
+  // Eq. (13), (14), (17): the antennas move with their agents (an anchor link's transmitter is
+  // fixed); with the wall update, each wall of the path has its offset in the state.
+  const std::optional<estimation::Block> tx = link.kind == LinkKind::kAnchor ? std::nullopt : position(link.tx_agent);
+  const std::optional<estimation::Block> rx = position(link.rx_agent);
+  std::array<std::optional<estimation::Block>, estimation::MeasurementRow::kMaxBlocks> walls{};
+  std::size_t wall_count = 0;
   if (options_.wall_update) {
-    const int wall_column0 = state_.layout().At({BlockKind::kWallOffset, 0}).offset;
-    for (std::size_t i = 0; i < expected.walls.size(); ++i) row.emplace_back(wall_column0 + expected.walls[i], path.d_offset[i]);
+    for (const int w : expected.walls) walls[wall_count++] = state_.layout().At(BlockKey(blocks::kWallOffset, w));
   }
-  return row;
+  return estimation::ImagePathRangeRow(expected.path, tx, rx, std::span(walls.data(), wall_count), variance_m2);
 }
 
 CoopStepInfo CoopTracker::Step(double t_s, std::span<const LinkSignal* const> signals) {
@@ -228,16 +224,16 @@ CoopStepInfo CoopTracker::Step(double t_s, std::span<const LinkSignal* const> si
   }
   // Prediction (Eq. 5, 16): constant velocity per agent with sigma_a = v_max / (3 dt) (Sec. IV-B);
   // walls static without process noise.
-  estimation::PropagateConstantVelocityAll(state_, agents_, t_s, CoopMotion(options_, t_s - state_.t_s()));
+  const estimation::ConstantVelocity motion(CoopMotion(options_, t_s - state_.t_s()), 2, agents_);
+  estimation::Propagate(state_, t_s, {&motion});
 
   const geometry::FloorPlan plan = CurrentPlan();
   const std::vector<Vec2> predicted = Positions();
-  const int n = state_.dimension();
 
   CoopStepInfo info;
   info.links.resize(links_.size());
-  std::vector<Eigen::Triplet<double>> triplets;
-  std::vector<double> innovation, variance;
+  std::vector<estimation::MeasurementRow> rows;
+  std::vector<double> innovations;
   std::vector<std::vector<ExpectedPath>> expected(links_.size());
   for (std::size_t l = 0; l < links_.size(); ++l) {
     const Link& link = links_[l];
@@ -258,54 +254,37 @@ CoopStepInfo CoopTracker::Step(double t_s, std::span<const LinkSignal* const> si
     if (ranges.empty()) continue;
     // Sec. III-B3: Hungarian assignment on min(|d_hat - d|, d_c); pairs at the cut-off are not
     // associations.
-    Eigen::MatrixXd cost(static_cast<int>(paths.size()), static_cast<int>(ranges.size()));
-    for (std::size_t k = 0; k < paths.size(); ++k) {
-      for (std::size_t z = 0; z < ranges.size(); ++z) {
-        cost(static_cast<int>(k), static_cast<int>(z)) = std::min(std::abs(ranges[z] - paths[k].range_m()), cutoff_m_);
-      }
-    }
-    const std::vector<int> assignment = estimation::SolveAssignment(cost);
+    std::vector<double> expected_m;
+    for (const auto& path : paths) expected_m.push_back(path.range_m());
+    const std::vector<int> assignment = estimation::AssociateRanges(expected_m, ranges, cutoff_m_);
     for (std::size_t k = 0; k < paths.size(); ++k) {
       const int z = assignment[k];
-      if (z < 0 || !(std::abs(ranges[static_cast<std::size_t>(z)] - paths[k].range_m()) < cutoff_m_)) continue;
-      const int row = static_cast<int>(innovation.size());
-      const std::size_t first_triplet = triplets.size();
-      for (const auto& [column, value] : JacobianRow(link, paths[k])) triplets.emplace_back(row, column, value);
+      if (z < 0) continue;
       const double nu = ranges[static_cast<std::size_t>(z)] - paths[k].range_m();
       const double r_m2 = options_.variance.enabled
                               ? variance_.Variance(paths[k].history, true).variance_m2
                               : options_.variance.default_sigma_m * options_.variance.default_sigma_m;
-      if (options_.innovation_gate_sigma > 0.0) {
-        // Our addition (docs/methods/coop.md): a row whose innovation is implausible under its
-        // predicted innovation variance h P h^T + r is a wrong association (a diffuse or
-        // unmodelled peak within d_c) and is dropped before it corrupts the state.
-        double s_m2 = r_m2;
-        const auto& P = state_.covariance();
-        for (std::size_t a = first_triplet; a < triplets.size(); ++a) {
-          for (std::size_t b = first_triplet; b < triplets.size(); ++b) {
-            s_m2 += triplets[a].value() * P(triplets[a].col(), triplets[b].col()) * triplets[b].value();
-          }
-        }
-        if (nu * nu > options_.innovation_gate_sigma * options_.innovation_gate_sigma * s_m2) {
-          triplets.resize(first_triplet);
-          ++li.gated;
-          continue;
-        }
+      const estimation::MeasurementRow row = JacobianRow(link, paths[k], r_m2);
+      // Our addition (docs/methods/coop.md): a row whose innovation is implausible under its
+      // predicted innovation variance h P h^T + r is a wrong association (a diffuse or
+      // unmodelled peak within d_c) and is dropped before it corrupts the state.
+      const double gate = options_.innovation_gate_sigma * options_.innovation_gate_sigma;
+      if (options_.innovation_gate_sigma > 0.0 &&
+          !estimation::InsideChi2Gate(nu, estimation::InnovationVariance(state_, row), gate)) {
+        ++li.gated;
+        continue;
       }
-      innovation.push_back(nu);
-      variance.push_back(r_m2);
+      rows.push_back(row);
+      innovations.push_back(nu);
       ++li.associated;
     }
   }
 
   // One stacked update of all links (Algorithm 1), the standard covariance form.
-  const int rows = static_cast<int>(innovation.size());
-  if (rows > 0) {
-    Eigen::SparseMatrix<double, Eigen::RowMajor> H(rows, n);
-    H.setFromTriplets(triplets.begin(), triplets.end());
-    const Eigen::VectorXd nu = Eigen::Map<const Eigen::VectorXd>(innovation.data(), rows);
-    const Eigen::MatrixXd R = Eigen::Map<const Eigen::VectorXd>(variance.data(), rows).asDiagonal();
-    info.update = estimation::EkfUpdate(state_, H, nu, R, estimation::CovarianceForm::kStandard);
+  if (!rows.empty()) {
+    estimation::UpdateOptions update;
+    update.form = estimation::CovarianceForm::kStandard;
+    info.update = estimation::Update(state_, rows, innovations, update);
   } else {
     info.update.rejection = estimation::UpdateRejection::kNoMeasurements;
   }

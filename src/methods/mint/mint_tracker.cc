@@ -12,7 +12,10 @@
 
 namespace mirage::methods::mint {
 
-using estimation::BlockKind;
+namespace blocks = estimation::blocks;
+
+constexpr estimation::BlockKey kPosition(blocks::kPosition, 0);
+constexpr estimation::BlockKey kVelocity(blocks::kVelocity, 0);
 
 std::vector<std::string> Validate(const MintOptions& options) {
   std::vector<std::string> problems;
@@ -40,12 +43,16 @@ std::vector<std::string> Validate(const MintOptions& options) {
 
 MintTracker::MintTracker(const MintOptions& options, const geometry::VirtualAnchorSet& vas,
                          const geometry::FloorPlan& plan, double range_sigma_at_unit_sinr_m)
-    : options_(options), vas_(&vas), plan_(&plan), variance_(options.variance, range_sigma_at_unit_sinr_m) {}
+    : options_(options),
+      vas_(&vas),
+      plan_(&plan),
+      variance_(options.variance, range_sigma_at_unit_sinr_m),
+      motion_(options.motion) {}
 
 void MintTracker::Initialize(double t_s, const Vec2& p0_m) {
   estimation::StateLayout layout;
-  layout.Append({BlockKind::kPosition, 0}, 2);
-  layout.Append({BlockKind::kVelocity, 0}, 2);
+  layout.Append(blocks::kPosition, 0);
+  layout.Append(blocks::kVelocity, 0);
   Eigen::Vector4d mean;
   mean << p0_m, 0.0, 0.0;
   const double sp2 = options_.initial_position_sigma_m * options_.initial_position_sigma_m;
@@ -109,34 +116,30 @@ estimation::UpdateResult MintTracker::Update(estimation::State& state, const std
                                              const std::vector<double>& variances_m2,
                                              const std::vector<std::optional<double>>& sinrs,
                                              std::vector<MintAssociation>* associations) const {
-  const Vec2 prior_m = state.Mean({BlockKind::kPosition, 0});
-  const int position_offset = state.layout().At({BlockKind::kPosition, 0}).offset;
-  const auto m = static_cast<Eigen::Index>(pairings.size());
-  Eigen::MatrixXd H = Eigen::MatrixXd::Zero(m, state.dimension());  // Eq. (3.19)
-  Eigen::VectorXd innovation(m);
-  Eigen::MatrixXd R = Eigen::MatrixXd::Zero(m, m);
-  Eigen::Index rows = 0;
+  const estimation::Block position = state.layout().At(kPosition);
+  std::vector<estimation::MeasurementRow> rows;  // Eq. (3.18), (3.19)
+  std::vector<double> innovations;
+  rows.reserve(pairings.size());
+  innovations.reserve(pairings.size());
   for (std::size_t k = 0; k < pairings.size(); ++k) {
     const Pairing& p = pairings[k];
-    const auto prediction = estimation::PredictVaRange(prior_m, (*vas_)[p.va_id].position_m);
-    if (!prediction) continue;
-    H.block<1, 2>(rows, position_offset) = prediction->J_range_p;
-    innovation(rows) = p.measurement->range_m - prediction->range_m;  // Eq. (3.20)
-    R(rows, rows) = variances_m2[k];
+    const auto row = estimation::VaRangeRow(state, position, (*vas_)[p.va_id].position_m, std::nullopt, variances_m2[k]);
+    if (!row) continue;
+    rows.push_back(*row);
+    innovations.push_back(p.measurement->range_m - row->predicted);  // Eq. (3.20)
     if (associations != nullptr) {
       MintAssociation a;
       a.anchor_index = p.anchor_index;
       a.va_id = p.va_id;
-      a.expected_range_m = prediction->range_m;
+      a.expected_range_m = row->predicted;
       a.measured_range_m = p.measurement->range_m;
       a.variance_m2 = variances_m2[k];
       if (k < sinrs.size()) a.sinr = sinrs[k];
       a.overlapped = p.overlapped;
       associations->push_back(a);
     }
-    ++rows;
   }
-  return estimation::EkfUpdate(state, H.topRows(rows), innovation.head(rows), R.topLeftCorner(rows, rows));
+  return estimation::Update(state, rows, innovations);
 }
 
 double MintTracker::CurrentVariance(int va_id) const {
@@ -162,9 +165,9 @@ bool MintTracker::CheckTrackLoss(const Vec2& position_m, std::span<const core::A
 }
 
 MintStepResult MintTracker::Step(double t_s, std::span<const core::AnchorRanges> measurements) {
-  estimation::PropagateConstantVelocity(state_, 0, t_s, options_.motion);
+  estimation::Propagate(state_, t_s, {&motion_});
   MintStepResult result;
-  Reference reference{state_.Mean({BlockKind::kPosition, 0}), state_.Covariance({BlockKind::kPosition, 0})};
+  Reference reference{state_.Mean(kPosition), state_.Covariance(kPosition)};
 
   if (options_.reassociate) {
     // Stage 1: the LOS ranges alone, with the variances known so far. Their posterior is the
@@ -177,7 +180,7 @@ MintStepResult MintTracker::Step(double t_s, std::span<const core::AnchorRanges>
       for (const auto& p : los) variances.push_back(CurrentVariance(p.va_id));
       estimation::State trial = state_;
       if (Update(trial, los, variances, {}, nullptr).applied) {
-        reference = {trial.Mean({BlockKind::kPosition, 0}), trial.Covariance({BlockKind::kPosition, 0})};
+        reference = {trial.Mean(kPosition), trial.Covariance(kPosition)};
       }
     }
   }
@@ -191,7 +194,7 @@ MintStepResult MintTracker::Step(double t_s, std::span<const core::AnchorRanges>
       // Sec. 3.6: amplitudes of overlapping paths are not used, their variance falls back.
       const auto& amplitude = p.measurement->amplitude;
       if (amplitude && !p.overlapped) variance_.AddSample(p.va_id, reference.position_m, *amplitude);
-      const VaVariance v = variance_.Variance(p.va_id, !p.overlapped && amplitude.has_value());
+      const estimation::RangeVariance v = variance_.Variance(p.va_id, !p.overlapped && amplitude.has_value());
       variances.push_back(v.variance_m2);
       sinrs.push_back(v.sinr);
     } else {
@@ -202,21 +205,21 @@ MintStepResult MintTracker::Step(double t_s, std::span<const core::AnchorRanges>
   result.update = Update(state_, pairings, variances, sinrs, &result.associations);
 
   if (options_.constrain_to_room && previous_position_m_) {
-    const Vec2 estimate_m = state_.Mean({BlockKind::kPosition, 0});
+    const Vec2 estimate_m = state_.Mean(kPosition);
     const Vec2 feasible_m = geometry::ConstrainMove(*plan_, *previous_position_m_, estimate_m);
     if (feasible_m != estimate_m) {
-      state_.SetMean({BlockKind::kPosition, 0}, feasible_m);
+      state_.SetMean(kPosition, feasible_m);
       result.constrained = true;
     }
   }
   if (options_.relocalization.enabled) {
-    result.relocalized = CheckTrackLoss(state_.Mean({BlockKind::kPosition, 0}), measurements);
+    result.relocalized = CheckTrackLoss(state_.Mean(kPosition), measurements);
   }
-  previous_position_m_ = state_.Mean({BlockKind::kPosition, 0});
+  previous_position_m_ = state_.Mean(kPosition);
 
-  result.position_m = state_.Mean({BlockKind::kPosition, 0});
-  result.velocity_mps = state_.Mean({BlockKind::kVelocity, 0});
-  result.position_covariance = state_.Covariance({BlockKind::kPosition, 0});
+  result.position_m = state_.Mean(kPosition);
+  result.velocity_mps = state_.Mean(kVelocity);
+  result.position_covariance = state_.Covariance(kPosition);
   return result;
 }
 

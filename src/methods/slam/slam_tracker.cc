@@ -20,7 +20,10 @@
 namespace mirage::methods::slam {
 
 using estimation::BlockKey;
-using estimation::BlockKind;
+namespace blocks = estimation::blocks;
+
+constexpr BlockKey kPosition(blocks::kPosition, 0);
+constexpr BlockKey kVelocity(blocks::kVelocity, 0);
 
 std::vector<std::string> Validate(const SlamOptions& options) {
   std::vector<std::string> problems;
@@ -66,7 +69,7 @@ std::vector<std::string> Validate(const SlamOptions& options) {
     problems.push_back("max_speed_mps must be >= 0 (0 = off)");
   }
   for (const auto& p : estimation::Validate(options.motion)) problems.push_back("motion." + p);
-  for (const auto& p : mint::Validate(options.variance)) problems.push_back("variance." + p);
+  for (const auto& p : estimation::Validate(options.variance)) problems.push_back("variance." + p);
   for (const auto& p : Validate(options.discovery)) problems.push_back("discovery." + p);
   for (const auto& p : Validate(options.recovery)) problems.push_back("recovery." + p);
   return problems;
@@ -99,13 +102,14 @@ SlamTracker::SlamTracker(const SlamOptions& options, const geometry::VirtualAnch
       known_vas_(&known_vas),
       plan_(&plan),
       variance_(options.variance, range_sigma_at_unit_sinr_m),
+      motion_(options.motion),
       discovery_(options.discovery),
       recovery_(RecoveryOptions(options, plan)) {}
 
 void SlamTracker::Initialize(double t_s, const Vec2& p0_m) {
   estimation::StateLayout layout;
-  layout.Append({BlockKind::kPosition, 0}, 2);
-  layout.Append({BlockKind::kVelocity, 0}, 2);
+  layout.Append(blocks::kPosition, 0);
+  layout.Append(blocks::kVelocity, 0);
   Eigen::Vector4d mean;
   mean << p0_m, 0.0, 0.0;
   const double sp2 = options_.initial_position_sigma_m * options_.initial_position_sigma_m;
@@ -136,11 +140,11 @@ void SlamTracker::Initialize(double t_s, const Vec2& p0_m) {
 }
 
 bool SlamTracker::InState(std::size_t map_index) const {
-  return state_.layout().Find({BlockKind::kVirtualAnchor, map_[map_index].va.id}).has_value();
+  return state_.layout().Find(BlockKey(blocks::kVirtualAnchor, map_[map_index].va.id)).has_value();
 }
 
 Vec2 SlamTracker::VaPosition(std::size_t map_index) const {
-  if (InState(map_index)) return state_.Mean({BlockKind::kVirtualAnchor, map_[map_index].va.id});
+  if (InState(map_index)) return state_.Mean(BlockKey(blocks::kVirtualAnchor, map_[map_index].va.id));
   return map_[map_index].prior_m;
 }
 
@@ -351,12 +355,12 @@ void SlamTracker::AddToState(std::size_t map_index) {
   // covariance and no correlation equals carrying it in the state from the start.
   const Entry& e = map_[map_index];
   const Eigen::MatrixXd cross = Eigen::MatrixXd::Zero(2, state_.dimension());
-  estimation::CovarianceOps::Augment(state_, {BlockKind::kVirtualAnchor, e.va.id}, e.prior_m, cross,
+  estimation::CovarianceOps::Augment(state_, blocks::kVirtualAnchor, e.va.id, e.prior_m, cross,
                                      e.va.covariance_m2);
 }
 
 SlamTracker::Reference SlamTracker::PriorReference() const {
-  return {state_.Mean({BlockKind::kPosition, 0}), state_.Covariance({BlockKind::kPosition, 0}), std::nullopt};
+  return {state_.Mean(kPosition), state_.Covariance(kPosition), std::nullopt};
 }
 
 SlamTracker::VaAtReference SlamTracker::VaAt(const Reference& reference, std::size_t map_index) const {
@@ -366,9 +370,9 @@ SlamTracker::VaAtReference SlamTracker::VaAt(const Reference& reference, std::si
     out.covariance_m2 = map_[map_index].va.covariance_m2;
     return out;
   }
-  const BlockKey key{BlockKind::kVirtualAnchor, map_[map_index].va.id};
+  const BlockKey key(blocks::kVirtualAnchor, map_[map_index].va.id);
   const int v = state_.layout().At(key).offset;
-  const int p = state_.layout().At({BlockKind::kPosition, 0}).offset;
+  const int p = state_.layout().At(kPosition).offset;
   if (reference.stage_one) {
     out.mean_m = reference.stage_one->Mean(state_, v);
     out.covariance_m2 = reference.stage_one->Covariance(state_, v, v);
@@ -383,13 +387,21 @@ SlamTracker::VaAtReference SlamTracker::VaAt(const Reference& reference, std::si
 
 SlamTracker::Reference SlamTracker::StageOne(const std::vector<Pairing>& los,
                                              const std::vector<double>& variances_m2) const {
-  const int p = state_.layout().At({BlockKind::kPosition, 0}).offset;
+  const int p = state_.layout().At(kPosition).offset;
   Reference reference = PriorReference();
   // Only the position columns of the rows are non-zero: the anchors are not in the state.
   assert(std::none_of(los.begin(), los.end(), [&](const Pairing& q) { return InState(q.map_index); }));
   const Rows rows = Linearize(state_, los, variances_m2);
-  reference.stage_one = estimation::BlockUpdate::Make(state_, p, Eigen::MatrixXd(rows.H.middleCols(p, 2)),
-                                                      rows.innovation_m, rows.R_m2);
+  const auto m = static_cast<Eigen::Index>(rows.rows.size());
+  Eigen::MatrixXd H_p(m, 2);
+  Eigen::MatrixXd R = Eigen::MatrixXd::Zero(m, m);
+  for (Eigen::Index i = 0; i < m; ++i) {
+    const auto& row = rows.rows[static_cast<std::size_t>(i)];
+    H_p.row(i) = row.jacobians[0].head<2>();  // the agent's position, the row's only block
+    R(i, i) = row.variance;
+  }
+  const Eigen::VectorXd nu = Eigen::Map<const Eigen::VectorXd>(rows.innovations_m.data(), m);
+  reference.stage_one = estimation::BlockUpdate::Make(state_, p, H_p, nu, R);
   if (reference.stage_one) {
     reference.position_m = reference.stage_one->Mean(state_, p);
     reference.covariance_m2 = reference.stage_one->Covariance(state_, p, p);
@@ -399,61 +411,44 @@ SlamTracker::Reference SlamTracker::StageOne(const std::vector<Pairing>& los,
 
 SlamTracker::Rows SlamTracker::Linearize(const estimation::State& state, const std::vector<Pairing>& pairings,
                                          const std::vector<double>& variances_m2) const {
-  const Vec2 prior_m = state.Mean({BlockKind::kPosition, 0});
-  const int position_offset = state.layout().At({BlockKind::kPosition, 0}).offset;
-  const auto m = static_cast<Eigen::Index>(pairings.size());
-  // Leitinger Eq. (16), current rows; sparse: each row has the agent's and one VA's columns.
-  std::vector<Eigen::Triplet<double>> entries;
-  entries.reserve(static_cast<std::size_t>(4 * m));
-  Eigen::VectorXd innovation(m);
-  Eigen::MatrixXd R = Eigen::MatrixXd::Zero(m, m);
-  Eigen::Index rows = 0;
+  const estimation::Block position = state.layout().At(kPosition);
+  // Leitinger Eq. (16), current rows: each touches the agent's position and one VA's block.
+  Rows out;
+  out.rows.reserve(pairings.size());
+  out.innovations_m.reserve(pairings.size());
   for (std::size_t k = 0; k < pairings.size(); ++k) {
     const Pairing& p = pairings[k];
-    const BlockKey key{BlockKind::kVirtualAnchor, map_[p.map_index].va.id};
+    const BlockKey key(blocks::kVirtualAnchor, map_[p.map_index].va.id);
     const auto block = state.layout().Find(key);
-    const Vec2 va_m = block ? Vec2(state.Mean(key)) : map_[p.map_index].prior_m;
-    const auto prediction = estimation::PredictVaRange(prior_m, va_m);
-    if (!prediction) continue;
-    for (int c = 0; c < 2; ++c) {
-      entries.emplace_back(rows, position_offset + c, prediction->J_range_p(c));
-      if (block) entries.emplace_back(rows, block->offset + c, prediction->J_range_va(c));
-    }
-    innovation(rows) = p.measurement->range_m - prediction->range_m;
-    R(rows, rows) = variances_m2[k];
-    ++rows;
+    const Vec2 va_m = block ? Vec2(state.mean().segment<2>(block->mean_offset)) : map_[p.map_index].prior_m;
+    const auto row = estimation::VaRangeRow(state, position, va_m, block, variances_m2[k]);
+    if (!row) continue;
+    out.rows.push_back(*row);
+    out.innovations_m.push_back(p.measurement->range_m - row->predicted);
   }
-  Rows out;
-  out.H.resize(rows, state.dimension());
-  out.H.setFromTriplets(entries.begin(), entries.end());
-  out.innovation_m = innovation.head(rows);
-  out.R_m2 = R.topLeftCorner(rows, rows);
   return out;
 }
 
-void SlamTracker::WalkDiscoveredVas(double dt_s) {
-  const double q = options_.discovered_va_walk_m_per_sqrt_s;
-  if (q <= 0.0 || dt_s <= 0.0) return;
-  const Eigen::Matrix2d Q = Eigen::Matrix2d::Identity() * q * q * dt_s;
+std::vector<BlockKey> SlamTracker::DiscoveredVaBlocks() const {
+  std::vector<BlockKey> out;
   for (std::size_t i = 0; i < map_.size(); ++i) {
-    if (map_[i].va.origin != MapVaOrigin::kDiscovered || !InState(i)) continue;
-    const int offset = state_.layout().At({BlockKind::kVirtualAnchor, map_[i].va.id}).offset;
-    estimation::CovarianceOps::PropagateBlock(state_, offset, Eigen::Matrix2d::Identity(), Q, state_.t_s());
+    if (map_[i].va.origin == MapVaOrigin::kDiscovered && InState(i)) out.emplace_back(blocks::kVirtualAnchor, map_[i].va.id);
   }
+  return out;
 }
 
 estimation::UpdateResult SlamTracker::Update(estimation::State& state, const std::vector<Pairing>& pairings,
                                              const std::vector<double>& variances_m2) const {
   const Rows rows = Linearize(state, pairings, variances_m2);
-  return estimation::EkfUpdate(
-      state, rows.H, rows.innovation_m, rows.R_m2,
-      options_.joseph_update ? estimation::CovarianceForm::kJoseph : estimation::CovarianceForm::kStandard);
+  estimation::UpdateOptions update;
+  update.form = options_.joseph_update ? estimation::CovarianceForm::kJoseph : estimation::CovarianceForm::kStandard;
+  return estimation::Update(state, rows.rows, rows.innovations_m, update);
 }
 
 SlamStepResult SlamTracker::Step(double t_s, std::span<const core::AnchorRanges> measurements) {
-  const double dt_s = t_s - state_.t_s();
-  estimation::PropagateConstantVelocity(state_, 0, t_s, options_.motion);
-  WalkDiscoveredVas(dt_s);
+  // The agent moves (Eq. 13-14); discovered VAs may take a random walk (off by default).
+  const estimation::RandomWalk va_walk(options_.discovered_va_walk_m_per_sqrt_s, DiscoveredVaBlocks());
+  estimation::Propagate(state_, t_s, {&motion_, &va_walk});
   SlamStepResult result;
   Reference reference = PriorReference();
   std::vector<Vec2> blocked_m;  // the anchors whose LOS found no range at this step
@@ -497,7 +492,7 @@ SlamStepResult SlamTracker::Step(double t_s, std::span<const core::AnchorRanges>
         map_[p.map_index].startup.Add(*amplitude, (VaPosition(p.map_index) - reference.position_m).norm(),
                                       reference.position_m, LawReachM());
       }
-      const mint::VaVariance v = variance_.Variance(va.id, amplitude_usable);
+      const estimation::RangeVariance v = variance_.Variance(va.id, amplitude_usable);
       a.variance_m2 = v.variance_m2;
       a.sinr = v.sinr;
       if (v.moments) {  // the window the estimate used, at this step's sample position
@@ -532,8 +527,8 @@ SlamStepResult SlamTracker::Step(double t_s, std::span<const core::AnchorRanges>
 
   // Discovery with the ranges nobody took, from the posterior agent position; not at a restart,
   // which has just cleared it and left the agent at its initial std.
-  const Vec2 agent_m = state_.Mean({BlockKind::kPosition, 0});
-  const Eigen::Matrix2d agent_covariance_m2 = state_.Covariance({BlockKind::kPosition, 0});
+  const Vec2 agent_m = state_.Mean(kPosition);
+  const Eigen::Matrix2d agent_covariance_m2 = state_.Covariance(kPosition);
   for (const auto& anchor : measurements) {
     if (result.relocalized) break;
     std::vector<core::RangeMeasurement> rest;
@@ -551,7 +546,7 @@ SlamStepResult SlamTracker::Step(double t_s, std::span<const core::AnchorRanges>
     for (auto& found : found_vas) {
       // Lafer Eq. 4.7-4.9 with G_x = [I_2 0]: the new VA is correlated with everything the agent
       // position is, and P_new = P_pp + P_rls.
-      const int p_offset = state_.layout().At({BlockKind::kPosition, 0}).offset;
+      const int p_offset = state_.layout().At(kPosition).offset;
       const Eigen::MatrixXd cross = state_.covariance().middleRows(p_offset, 2);
       const Eigen::Matrix2d P_pp = state_.covariance().block<2, 2>(p_offset, p_offset);
       Entry e = NewEntry();
@@ -560,7 +555,7 @@ SlamStepResult SlamTracker::Step(double t_s, std::span<const core::AnchorRanges>
       e.va.origin = MapVaOrigin::kDiscovered;
       e.va.discovered_step = step_;
       e.prior_m = found.position_m;
-      estimation::CovarianceOps::Augment(state_, {BlockKind::kVirtualAnchor, e.va.id}, found.position_m, cross,
+      estimation::CovarianceOps::Augment(state_, blocks::kVirtualAnchor, e.va.id, found.position_m, cross,
                                          P_pp + found.covariance_m2);
       // The candidate's amplitudes fill the variance window at once (digest Sec. 2.8, third
       // option), so the VA filter judges a new VA by its own history from the start.
@@ -576,11 +571,11 @@ SlamStepResult SlamTracker::Step(double t_s, std::span<const core::AnchorRanges>
   }
   ++step_;
 
-  result.position_m = state_.Mean({BlockKind::kPosition, 0});
-  result.velocity_mps = state_.Mean({BlockKind::kVelocity, 0});
-  result.position_covariance = state_.Covariance({BlockKind::kPosition, 0});
+  result.position_m = state_.Mean(kPosition);
+  result.velocity_mps = state_.Mean(kVelocity);
+  result.position_covariance = state_.Covariance(kPosition);
   for (const auto& block : state_.layout().blocks()) {
-    if (block.key.kind == BlockKind::kVirtualAnchor) ++result.state_vas;
+    if (block.key.type_id == blocks::kVirtualAnchor.id) ++result.state_vas;
   }
   return result;
 }
@@ -668,7 +663,7 @@ bool SlamTracker::RecoverTrack(double t_s, std::span<const core::AnchorRanges> m
     if (floor_plan) matched += mint::ScorePosition(*known_vas_, *plan_, p_m, measurements, visible_scoring).matched;
     return matched;
   };
-  const Vec2 estimate_m = state_.Mean({BlockKind::kPosition, 0});
+  const Vec2 estimate_m = state_.Mean(kPosition);
   const auto restart = recovery_.Check(t_s, estimate_m, anchors, score, measurements);
   if (!restart) return false;
   // Restart the agent as at the start, at the recovered position with the candidates' velocity,
@@ -676,9 +671,9 @@ bool SlamTracker::RecoverTrack(double t_s, std::span<const core::AnchorRanges> m
   // its marginal; the discovery's groups and candidates hold positions of the lost track.
   const double sp2 = options_.initial_position_sigma_m * options_.initial_position_sigma_m;
   const double sv2 = options_.initial_velocity_sigma_mps * options_.initial_velocity_sigma_mps;
-  estimation::CovarianceOps::Reinitialize(state_, {BlockKind::kPosition, 0}, restart->position_m,
+  estimation::CovarianceOps::Reinitialize(state_, kPosition, restart->position_m,
                                           Eigen::Matrix2d::Identity() * sp2);
-  estimation::CovarianceOps::Reinitialize(state_, {BlockKind::kVelocity, 0}, restart->velocity_mps,
+  estimation::CovarianceOps::Reinitialize(state_, kVelocity, restart->velocity_mps,
                                           Eigen::Matrix2d::Identity() * sv2);
   discovery_.Reset();
   for (auto& e : map_) {  // both taken along the lost track
@@ -694,7 +689,7 @@ std::vector<MapVa> SlamTracker::Map() const {
   for (std::size_t i = 0; i < map_.size(); ++i) {
     MapVa va = map_[i].va;
     if (InState(i)) {
-      const BlockKey key{BlockKind::kVirtualAnchor, va.id};
+      const BlockKey key(blocks::kVirtualAnchor, va.id);
       va.position_m = state_.Mean(key);
       va.covariance_m2 = state_.Covariance(key);
     }

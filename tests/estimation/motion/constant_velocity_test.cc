@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include <Eigen/Core>
 #include <gtest/gtest.h>
@@ -13,11 +14,17 @@
 namespace mirage::estimation {
 namespace {
 
-constexpr BlockKey kPos0{BlockKind::kPosition, 0};
-constexpr BlockKey kVel0{BlockKind::kVelocity, 0};
-constexpr BlockKey kPos1{BlockKind::kPosition, 1};
-constexpr BlockKey kVel1{BlockKind::kVelocity, 1};
-constexpr BlockKey kVa4{BlockKind::kVirtualAnchor, 4};
+constexpr BlockKey kPos0(blocks::kPosition, 0);
+constexpr BlockKey kVel0(blocks::kVelocity, 0);
+constexpr BlockKey kPos1(blocks::kPosition, 1);
+constexpr BlockKey kVel1(blocks::kVelocity, 1);
+constexpr BlockKey kVa4(blocks::kVirtualAnchor, 4);
+
+// Moves only `agent` (2-D) to t_s.
+void PropagateAgent(State& state, int agent, double t_s, const ConstantVelocityOptions& options) {
+  const ConstantVelocity model(options, 2, std::vector<int>{agent});
+  Propagate(state, t_s, {&model});
+}
 
 Eigen::MatrixXd RandomSpd(int n, std::uint64_t seed) {
   core::Rng rng(seed);
@@ -30,8 +37,8 @@ Eigen::MatrixXd RandomSpd(int n, std::uint64_t seed) {
 
 State AgentState(const Eigen::Vector4d& mean, const Eigen::Matrix4d& P, double t_s) {
   StateLayout layout;
-  layout.Append(kPos0, 2);
-  layout.Append(kVel0, 2);
+  layout.Append(blocks::kPosition, 0);
+  layout.Append(blocks::kVelocity, 0);
   return State(layout, mean, P, t_s);
 }
 
@@ -56,11 +63,11 @@ Eigen::Matrix4d ExpectedQ(double dt, double sigma_a) {
   return Q;
 }
 
-TEST(PropagateConstantVelocity, MovesThePositionByVelocityTimesDt) {
+TEST(ConstantVelocity, MovesThePositionByVelocityTimesDt) {
   // p = (1, 2), v = (0.5, -0.25), dt = 1.4 - 1.0 = 0.4: p+ = (1.2, 1.9), v unchanged.
   State state = AgentState(Eigen::Vector4d(1.0, 2.0, 0.5, -0.25), Eigen::Matrix4d::Identity(), 1.0);
 
-  PropagateConstantVelocity(state, 0, 1.4, ConstantVelocityOptions{});
+  PropagateAgent(state, 0, 1.4, ConstantVelocityOptions{});
 
   EXPECT_NEAR(state.mean()(0), 1.2, 1e-14);
   EXPECT_NEAR(state.mean()(1), 1.9, 1e-14);
@@ -69,13 +76,13 @@ TEST(PropagateConstantVelocity, MovesThePositionByVelocityTimesDt) {
   EXPECT_DOUBLE_EQ(state.t_s(), 1.4);
 }
 
-TEST(PropagateConstantVelocity, AddsTheWhiteNoiseAccelerationQPerAxis) {
+TEST(ConstantVelocity, AddsTheWhiteNoiseAccelerationQPerAxis) {
   // P = 0, sigma_a = 2 (q = 4), dt = 0.5:
   //   Q_pp = 4 * 0.5^4 / 4 = 0.0625, Q_pv = 4 * 0.5^3 / 2 = 0.25, Q_vv = 4 * 0.5^2 = 1,
   //   with no coupling between the x and y axes.
   State state = AgentState(Eigen::Vector4d::Zero(), Eigen::Matrix4d::Zero(), 0.0);
 
-  PropagateConstantVelocity(state, 0, 0.5, ConstantVelocityOptions{2.0});
+  PropagateAgent(state, 0, 0.5, ConstantVelocityOptions{2.0});
 
   Eigen::Matrix4d expected;
   expected << 0.0625, 0, 0.25, 0,  //
@@ -87,42 +94,42 @@ TEST(PropagateConstantVelocity, AddsTheWhiteNoiseAccelerationQPerAxis) {
   EXPECT_DOUBLE_EQ(state.covariance()(0, 3), 0.0);
 }
 
-TEST(PropagateConstantVelocity, PropagatesAFullCovarianceAsFPFtPlusQ) {
+TEST(ConstantVelocity, PropagatesAFullCovarianceAsFPFtPlusQ) {
   const Eigen::Matrix4d P0 = RandomSpd(4, 1);
   State state = AgentState(Eigen::Vector4d(0.3, -0.2, 1.0, 0.7), P0, 2.0);
 
-  PropagateConstantVelocity(state, 0, 2.25, ConstantVelocityOptions{0.8});
+  PropagateAgent(state, 0, 2.25, ConstantVelocityOptions{0.8});
 
   const Eigen::Matrix4d F = ExpectedF(0.25);
   const Eigen::Matrix4d expected = F * P0 * F.transpose() + ExpectedQ(0.25, 0.8);
   EXPECT_TRUE(state.covariance().isApprox(expected, 1e-13)) << state.covariance() << "\n\n" << expected;
 }
 
-TEST(PropagateConstantVelocity, ZeroDtLeavesMeanAndCovarianceUnchanged) {
+TEST(ConstantVelocity, ZeroDtLeavesMeanAndCovarianceUnchanged) {
   const Eigen::Matrix4d P0 = RandomSpd(4, 2);
   State state = AgentState(Eigen::Vector4d(1, 2, 3, 4), P0, 5.0);
 
-  PropagateConstantVelocity(state, 0, 5.0, ConstantVelocityOptions{3.0});
+  PropagateAgent(state, 0, 5.0, ConstantVelocityOptions{3.0});
 
   EXPECT_EQ(state.covariance(), Eigen::MatrixXd(P0));
   EXPECT_EQ(state.mean(), Eigen::VectorXd(Eigen::Vector4d(1, 2, 3, 4)));
   EXPECT_DOUBLE_EQ(state.t_s(), 5.0);
 }
 
-TEST(PropagateConstantVelocity, PropagatesCrossCovariancesOfBlocksAfterTheAgent) {
+TEST(ConstantVelocity, PropagatesCrossCovariancesOfBlocksAfterTheAgent) {
   // [pos0 | vel0 | va4]: the agent-VA cross-covariance becomes F P_agent,va (so pos-VA gains
   // dt * vel-VA), the VA block itself is untouched.
   StateLayout layout;
-  layout.Append(kPos0, 2);
-  layout.Append(kVel0, 2);
-  layout.Append(kVa4, 2);
+  layout.Append(blocks::kPosition, 0);
+  layout.Append(blocks::kVelocity, 0);
+  layout.Append(blocks::kVirtualAnchor, 4);
   const Eigen::MatrixXd P0 = RandomSpd(6, 3);
   Eigen::VectorXd x0(6);
   x0 << 0, 0, 1, -1, 5, 6;
   State state(layout, x0, P0, 0.0);
   const double dt = 0.1;
 
-  PropagateConstantVelocity(state, 0, dt, ConstantVelocityOptions{1.0});
+  PropagateAgent(state, 0, dt, ConstantVelocityOptions{1.0});
 
   Eigen::MatrixXd F_full = Eigen::MatrixXd::Identity(6, 6);
   F_full.topLeftCorner(4, 4) = ExpectedF(dt);
@@ -137,20 +144,20 @@ TEST(PropagateConstantVelocity, PropagatesCrossCovariancesOfBlocksAfterTheAgent)
   EXPECT_NEAR(state.mean()(1), -0.1, 1e-15);
 }
 
-TEST(PropagateConstantVelocity, MovesOnlyTheRequestedAgent) {
+TEST(ConstantVelocity, MovesOnlyTheRequestedAgent) {
   // [pos0 | vel0 | pos1 | vel1]: propagating agent 1 (offset 4) leaves agent 0's block alone but
   // updates the agent 0 - agent 1 cross-covariance.
   StateLayout layout;
-  layout.Append(kPos0, 2);
-  layout.Append(kVel0, 2);
-  layout.Append(kPos1, 2);
-  layout.Append(kVel1, 2);
+  layout.Append(blocks::kPosition, 0);
+  layout.Append(blocks::kVelocity, 0);
+  layout.Append(blocks::kPosition, 1);
+  layout.Append(blocks::kVelocity, 1);
   const Eigen::MatrixXd P0 = RandomSpd(8, 4);
   Eigen::VectorXd x0(8);
   x0 << 1, 1, 9, 9, 2, 3, -1, 0.5;
   State state(layout, x0, P0, 0.0);
 
-  PropagateConstantVelocity(state, 1, 2.0, ConstantVelocityOptions{0.5});
+  PropagateAgent(state, 1, 2.0, ConstantVelocityOptions{0.5});
 
   Eigen::MatrixXd F_full = Eigen::MatrixXd::Identity(8, 8);
   F_full.bottomRightCorner(4, 4) = ExpectedF(2.0);
@@ -162,19 +169,20 @@ TEST(PropagateConstantVelocity, MovesOnlyTheRequestedAgent) {
   EXPECT_EQ(state.Mean(kPos1), Eigen::VectorXd(Eigen::Vector2d(0, 4)));  // (2, 3) + 2 * (-1, 0.5)
 }
 
-TEST(PropagateConstantVelocity, AllAgentsMoveOverTheSameDt) {
+TEST(ConstantVelocity, AllAgentsMoveOverTheSameDt) {
   // Per-agent calls would move only agent 0 (its call stamps the state with t_s, so agent 1 sees
   // dt = 0); the all-agents form moves both by the same dt, as F = blkdiag(F, F) (Kulmer Eq. 5).
   StateLayout layout;
-  layout.Append(kPos0, 2);
-  layout.Append(kVel0, 2);
-  layout.Append(kPos1, 2);
-  layout.Append(kVel1, 2);
+  layout.Append(blocks::kPosition, 0);
+  layout.Append(blocks::kVelocity, 0);
+  layout.Append(blocks::kPosition, 1);
+  layout.Append(blocks::kVelocity, 1);
   const Eigen::MatrixXd P0 = RandomSpd(8, 5);
   Eigen::VectorXd x0(8);
   x0 << 1, 1, 9, 9, 2, 3, -1, 0.5;
   State state(layout, x0, P0, 1.0);
-  PropagateConstantVelocityAll(state, 2, 3.0, ConstantVelocityOptions{0.5});
+  const ConstantVelocity both(ConstantVelocityOptions{0.5}, 2, 2);
+  Propagate(state, 3.0, {&both});
   Eigen::MatrixXd F_full = Eigen::MatrixXd::Identity(8, 8);
   F_full.topLeftCorner(4, 4) = ExpectedF(2.0);
   F_full.bottomRightCorner(4, 4) = ExpectedF(2.0);
@@ -185,6 +193,29 @@ TEST(PropagateConstantVelocity, AllAgentsMoveOverTheSameDt) {
   EXPECT_EQ(state.Mean(kPos0), Eigen::VectorXd(Eigen::Vector2d(19, 19)));
   EXPECT_EQ(state.Mean(kPos1), Eigen::VectorXd(Eigen::Vector2d(0, 4)));
   EXPECT_EQ(state.t_s(), 3.0);
+}
+
+TEST(ConstantVelocity, MovesAThreeDimensionalAgentOnEveryAxisWithThePerAxisQ) {
+  // [pos3 | vel3]: p = (1, 2, 3), v = (0.5, -1, 0.25), dt = 0.4, sigma_a = 2; P = 0.
+  StateLayout layout;
+  layout.Append(blocks::kPosition3, 0);
+  layout.Append(blocks::kVelocity3, 0);
+  Eigen::VectorXd x0(6);
+  x0 << 1, 2, 3, 0.5, -1, 0.25;
+  State state(layout, x0, Eigen::MatrixXd::Zero(6, 6), 1.0);
+  const ConstantVelocity model(ConstantVelocityOptions{2.0}, 3, 1);
+
+  Propagate(state, 1.4, {&model});
+
+  EXPECT_TRUE(state.Mean(BlockKey(blocks::kPosition3, 0)).isApprox(Eigen::Vector3d(1.2, 1.6, 3.1), 1e-14));
+  const double q = 4.0, dt = 0.4;
+  for (int axis = 0; axis < 3; ++axis) {
+    EXPECT_NEAR(state.covariance()(axis, axis), q * std::pow(dt, 4) / 4.0, 1e-15);
+    EXPECT_NEAR(state.covariance()(axis, axis + 3), q * std::pow(dt, 3) / 2.0, 1e-15);
+    EXPECT_NEAR(state.covariance()(axis + 3, axis + 3), q * dt * dt, 1e-15);
+    EXPECT_EQ(state.covariance()(axis, (axis + 1) % 3), 0.0);  // axes stay independent
+  }
+  EXPECT_DOUBLE_EQ(state.t_s(), 1.4);
 }
 
 TEST(ConstantVelocityOptions, DefaultsAreValid) {

@@ -7,18 +7,18 @@
 namespace mirage::estimation {
 namespace {
 
-constexpr BlockKey kPos0{BlockKind::kPosition, 0};
-constexpr BlockKey kVel0{BlockKind::kVelocity, 0};
-constexpr BlockKey kPos1{BlockKind::kPosition, 1};
-constexpr BlockKey kVel1{BlockKind::kVelocity, 1};
+constexpr BlockKey kPos0(blocks::kPosition, 0);
+constexpr BlockKey kVel0(blocks::kVelocity, 0);
+constexpr BlockKey kPos1(blocks::kPosition, 1);
+constexpr BlockKey kVel1(blocks::kVelocity, 1);
 
 // Two agents, so the test also sees that only the named agent's velocity moves.
 State TwoAgents(const Eigen::Vector2d& v0_mps, const Eigen::Vector2d& v1_mps) {
   StateLayout layout;
-  layout.Append(kPos0, 2);
-  layout.Append(kVel0, 2);
-  layout.Append(kPos1, 2);
-  layout.Append(kVel1, 2);
+  layout.Append(blocks::kPosition, 0);
+  layout.Append(blocks::kVelocity, 0);
+  layout.Append(blocks::kPosition, 1);
+  layout.Append(blocks::kVelocity, 1);
   Eigen::VectorXd mean(8);
   mean << 1.0, 2.0, v0_mps, 3.0, 4.0, v1_mps;
   Eigen::MatrixXd P = Eigen::MatrixXd::Identity(8, 8) * 0.01;

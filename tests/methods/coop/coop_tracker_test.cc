@@ -152,7 +152,7 @@ TEST(CoopTracker, ProcessNoiseAllowsAVelocityChangeOfVmaxPerStepAtAnyStepTime) {
     tracker.Step(dt_s, signals);
 
     const auto& layout = tracker.state().layout();
-    const int v = layout.At({estimation::BlockKind::kVelocity, 1}).offset;
+    const int v = layout.At(estimation::BlockKey(estimation::blocks::kVelocity, 1)).offset;
     const double added_mps2 = tracker.state().covariance()(v, v) - options.velocity_sigma_mps * options.velocity_sigma_mps;
     EXPECT_NEAR(added_mps2, std::pow(options.max_speed_mps / 3.0, 2), 1e-15) << "dt " << dt_s << " s";
   }

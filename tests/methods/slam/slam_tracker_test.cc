@@ -124,7 +124,7 @@ std::pair<double, int> WalkDeviation(double q_m_per_sqrt_s) {
   double deviation = 0.0;
   int vas = 0;
   for (const auto& block : before.layout().blocks()) {
-    if (block.key.kind != estimation::BlockKind::kVirtualAnchor) continue;
+    if (block.key.type_id != estimation::blocks::kVirtualAnchor.id) continue;
     ++vas;
     const Eigen::Matrix2d change = after.Covariance(block.key) - before.Covariance(block.key);
     const Eigen::Matrix2d expected = Eigen::Matrix2d::Identity() * q_m_per_sqrt_s * q_m_per_sqrt_s * dt_s;

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-// Constant-velocity motion model of a 2-D agent (Lafer 2014 Eq. 3.13-3.16). The thesis leaves
-// Q unspecified [GAP]; we use the discrete white-noise-acceleration form
+// Constant-velocity motion model of an agent in the plane or in 3-D (Lafer 2014 Eq. 3.13-3.16).
+// The thesis leaves Q unspecified [GAP]; we use the discrete white-noise-acceleration form
 //   Q = sigma_a^2 [[dt^4/4 I, dt^3/2 I], [dt^3/2 I, dt^2 I]],
 // i.e. an acceleration that is constant over one step and white between steps, which scales
 // correctly when dt varies (recorded data).
@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "mirage/estimation/motion/propagator.h"
 #include "mirage/estimation/state.h"
 
 namespace mirage::estimation {
@@ -25,12 +26,21 @@ struct ConstantVelocityOptions {
 /// Problems with the options, empty if valid.
 std::vector<std::string> Validate(const ConstantVelocityOptions& options);
 
-/// Moves the agent's position and velocity blocks (which must be adjacent, position first) to
-/// t_s, propagating the covariance of the whole state. dt = t_s - state.t_s() must be >= 0.
-void PropagateConstantVelocity(State& state, int agent, double t_s, const ConstantVelocityOptions& options);
+/// The constant-velocity model of agents 0 .. agents-1, whose position and velocity blocks are
+/// adjacent (position first): blocks::kPosition / kVelocity in the plane (dimension 2) or
+/// blocks::kPosition3 / kVelocity3 in 3-D (dimension 3).
+class ConstantVelocity final : public Propagator {
+ public:
+  /// The model of agents 0 .. agents-1 in `dimension` (2 or 3) dimensions.
+  ConstantVelocity(const ConstantVelocityOptions& options, int dimension = 2, int agents = 1);
+  /// The model of the listed agents only.
+  ConstantVelocity(const ConstantVelocityOptions& options, int dimension, std::vector<int> agents);
+  void Apply(State& state, double dt_s) const override;
 
-/// The same for agents 0 .. agents-1 of a multi-agent state, all over the same dt. (Calling
-/// PropagateConstantVelocity per agent would move only the first: it stamps the state with t_s.)
-void PropagateConstantVelocityAll(State& state, int agents, double t_s, const ConstantVelocityOptions& options);
+ private:
+  ConstantVelocityOptions options_;
+  int dimension_;
+  std::vector<int> agents_;
+};
 
 }  // namespace mirage::estimation

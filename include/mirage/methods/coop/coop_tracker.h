@@ -36,12 +36,13 @@
 
 #include "mirage/core/types.h"
 #include "mirage/estimation/ekf_update.h"
+#include "mirage/estimation/measurement_row.h"
 #include "mirage/estimation/motion/constant_velocity.h"
 #include "mirage/estimation/state.h"
 #include "mirage/geometry/floor_plan.h"
 #include "mirage/geometry/image_path.h"
 #include "mirage/methods/coop/coop_link.h"
-#include "mirage/methods/mint/va_variance_estimator.h"
+#include "mirage/estimation/range_variance_estimator.h"
 
 namespace mirage::methods::coop {
 
@@ -73,9 +74,9 @@ struct CoopOptions {
   double innovation_gate_sigma = 3.0;
   /// SINR and range variance per MPC (Sec. III-C): window up to 0.2 m of track, default and
   /// fallback sigma 0.07 m (R_0). window_min_m 0.1 m and min_samples 5 are our choices [GAP].
-  mint::VaVarianceOptions variance = DefaultVariance();
+  estimation::RangeVarianceOptions variance = DefaultVariance();
 
-  static mint::VaVarianceOptions DefaultVariance();
+  static estimation::RangeVarianceOptions DefaultVariance();
 };
 
 /// Problems with the options, empty if valid.
@@ -162,12 +163,11 @@ class CoopTracker {
   /// The association cut-off d_c in use (m).
   [[nodiscard]] double cutoff_m() const { return cutoff_m_; }
 
-  /// The non-zero entries (state column, value) of the Jacobian row of an expected path's length
-  /// at the current state's layout (Eq. 13, 14, 17): the agents' position columns and, with the
-  /// wall update, the offset column of each wall of the path (a wall met twice appears twice;
-  /// entries add). Velocity columns are zero.
-  [[nodiscard]] std::vector<std::pair<int, double>> JacobianRow(const Link& link, const ExpectedPath& path) const;
-
+  /// The linearised row of an expected path's length at the current state (Eq. 13, 14, 17): the
+  /// agents' position blocks and, with the wall update, the offset block of each wall of the
+  /// path (a wall met twice sums); `variance_m2` becomes its R.
+  [[nodiscard]] estimation::MeasurementRow JacobianRow(const Link& link, const ExpectedPath& path,
+                                                       double variance_m2) const;
   /// Expected paths of a link at the given agent positions and the current walls, after the
   /// ambiguity pruning (exposed for tests and the position-error bound).
   [[nodiscard]] std::vector<ExpectedPath> ExpectedPaths(int link, std::span<const Vec2> agents_m,
@@ -186,7 +186,7 @@ class CoopTracker {
   double cutoff_m_ = 0.0;
   int agents_ = 0;
   estimation::State state_;
-  mint::VaVarianceEstimator variance_;
+  estimation::RangeVarianceEstimator variance_;
   std::map<std::pair<int, geometry::WallSequence>, int> history_ids_;
 };
 

@@ -24,7 +24,7 @@
 #include "mirage/geometry/floor_plan.h"
 #include "mirage/geometry/virtual_anchor.h"
 #include "mirage/methods/mint/relocalization.h"
-#include "mirage/methods/mint/va_variance_estimator.h"
+#include "mirage/estimation/range_variance_estimator.h"
 
 namespace mirage::methods::mint {
 
@@ -60,7 +60,7 @@ struct MintOptions {
   /// Motion model.
   estimation::ConstantVelocityOptions motion;
   /// Online variance estimation (Sec. 3.6).
-  VaVarianceOptions variance;
+  estimation::RangeVarianceOptions variance;
   /// Track-loss detection and relocalization (mirage).
   RelocalizationOptions relocalization;
 };
@@ -141,7 +141,8 @@ class MintTracker {
   MintOptions options_;
   const geometry::VirtualAnchorSet* vas_;
   const geometry::FloorPlan* plan_;
-  VaVarianceEstimator variance_;
+  estimation::RangeVarianceEstimator variance_;
+  estimation::ConstantVelocity motion_;
   estimation::State state_;
   std::optional<Vec2> previous_position_m_;
   int lost_steps_ = 0;

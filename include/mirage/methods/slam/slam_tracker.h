@@ -46,11 +46,13 @@
 #include "mirage/estimation/ekf_update.h"
 #include "mirage/estimation/gates/rician_gate.h"
 #include "mirage/estimation/innovation_scale.h"
+#include "mirage/estimation/measurement_row.h"
 #include "mirage/estimation/motion/constant_velocity.h"
+#include "mirage/estimation/motion/random_walk.h"
 #include "mirage/estimation/state.h"
 #include "mirage/geometry/floor_plan.h"
 #include "mirage/geometry/virtual_anchor.h"
-#include "mirage/methods/mint/va_variance_estimator.h"
+#include "mirage/estimation/range_variance_estimator.h"
 #include "mirage/methods/slam/track_recovery.h"
 #include "mirage/methods/slam/va_discovery.h"
 
@@ -117,7 +119,7 @@ struct SlamOptions {
   /// then a weak diffuse-multipath peak, which passes any range gate but not this one.
   double amplitude_gate_probability = 1e-3;
   /// Start-up amplitude law (mirage; 0 = off), its Rician K-factor, >= 0. Until a VA's amplitude
-  /// window first fills (0.9 m of associations, VaVarianceOptions) the amplitude gates
+  /// window first fills (0.9 m of associations, RangeVarianceOptions) the amplitude gates
   /// (amplitude_gate_probability, blocked_amplitude_probability) have no law. With this, a VA
   /// with at least one positive amplitude associated so far is tested against a provisional law:
   /// specular amplitude the mean of amplitude x range over those associations, divided by the
@@ -219,7 +221,7 @@ struct SlamOptions {
   /// comes near 1.5 m/s).
   double max_speed_mps = 1.5;
   /// Online variance estimation per VA (Lafer Sec. 3.6 / Leitinger Sec. III-C).
-  mint::VaVarianceOptions variance;
+  estimation::RangeVarianceOptions variance;
   /// Discovery of new VAs.
   DiscoveryOptions discovery;
   /// Track-loss detection and restart (mirage).
@@ -325,9 +327,8 @@ class SlamTracker {
   };
   // The linearised rows of an update (Leitinger Eq. 16): H, innovation and R.
   struct Rows {
-    Eigen::SparseMatrix<double, Eigen::RowMajor> H;
-    Eigen::VectorXd innovation_m;
-    Eigen::MatrixXd R_m2;
+    std::vector<estimation::MeasurementRow> rows;
+    std::vector<double> innovations_m;  // measured minus predicted range, one per row
   };
   [[nodiscard]] Vec2 VaPosition(std::size_t map_index) const;
   [[nodiscard]] bool InState(std::size_t map_index) const;
@@ -355,8 +356,9 @@ class SlamTracker {
   // prior when there are none or S is not positive definite.
   [[nodiscard]] Reference StageOne(const std::vector<Pairing>& los, const std::vector<double>& variances_m2) const;
   void AddToState(std::size_t map_index);
-  // The random walk of the discovered VAs over dt_s (SlamOptions::discovered_va_walk_m_per_sqrt_s).
-  void WalkDiscoveredVas(double dt_s);
+  // The discovered VAs in the state: the blocks of their random walk
+  // (SlamOptions::discovered_va_walk_m_per_sqrt_s).
+  [[nodiscard]] std::vector<estimation::BlockKey> DiscoveredVaBlocks() const;
   // Marks the anchors without an unfiltered LOS pairing among `pairings` (Entry::los_missed): the
   // pairings of stage 1, or of the joint association without reassociate. Remembers the step of
   // such a miss (last_los_miss_step_, the recovery's watch window).
@@ -423,7 +425,8 @@ class SlamTracker {
   SlamOptions options_;
   const geometry::VirtualAnchorSet* known_vas_;
   const geometry::FloorPlan* plan_;
-  mint::VaVarianceEstimator variance_;
+  estimation::RangeVarianceEstimator variance_;
+  estimation::ConstantVelocity motion_;
   VaDiscovery discovery_;
   TrackRecovery recovery_;
   estimation::State state_;

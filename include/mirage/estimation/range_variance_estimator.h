@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
-// Online SINR and range-variance estimation per virtual anchor (Lafer 2014 Sec. 3.6):
-// moment-based SINR from the amplitudes of the MPCs associated to the VA over a sliding spatial
-// window (Eq. 3.26, 3.27, 3.30), turned into a range variance by the CRLB (Eq. 3.28).
+// Online SINR and range-variance estimation per multipath-component source, e.g. a virtual
+// anchor or one path of a link (Lafer 2014 Sec. 3.6; MINT, SLAM and the cooperative filter use
+// it): moment-based SINR from the amplitudes of the MPCs associated to the source over a sliding
+// spatial window (Eq. 3.26, 3.27, 3.30), turned into a range variance by the CRLB (Eq. 3.28).
 //
 // Eq. (3.26) needs m_2 to be the *variance* of Y = |alpha_hat|^2 (digest Sec. 2.9): with
 // Y = |a + n|^2, n ~ CN(0, s^2), E[Y] = |a|^2 + s^2 and Var[Y] = s^4 + 2 |a|^2 s^2, so
@@ -16,10 +17,10 @@
 
 #include "mirage/core/types.h"
 
-namespace mirage::methods::mint {
+namespace mirage::estimation {
 
 /// Parameters of the variance estimation (defaults from Lafer 2014 Tab. 3.2).
-struct VaVarianceOptions {
+struct RangeVarianceOptions {
   /// Estimate per-VA variances online; when false every range gets range_sigma_m of the tracker.
   bool enabled = true;
   /// Minimum spatial extent d_min of the amplitude window (m), > 0: guards against correlated
@@ -44,7 +45,7 @@ struct VaVarianceOptions {
 };
 
 /// Problems with the options, empty if valid.
-std::vector<std::string> Validate(const VaVarianceOptions& options);
+std::vector<std::string> Validate(const RangeVarianceOptions& options);
 
 /// Moments of Y = |alpha_hat|^2 over a VA's current window (Eq. 3.27).
 struct AmplitudeMoments {
@@ -54,7 +55,7 @@ struct AmplitudeMoments {
 };
 
 /// The variance used for one VA at one step.
-struct VaVariance {
+struct RangeVariance {
   double variance_m2 = 0.0;   ///< range variance (m^2)
   /// SINR estimated at this step (linear; 0 for the "zero or complex" case), when the window
   /// allowed an estimate; empty when a fallback was used.
@@ -65,10 +66,10 @@ struct VaVariance {
 
 
 /// Amplitude history and variance state of all VAs; one instance per tracker.
-class VaVarianceEstimator {
+class RangeVarianceEstimator {
  public:
   /// @param range_sigma_at_unit_sinr_m c / (sqrt(8) pi beta) of the pulse (m), Eq. (3.28).
-  VaVarianceEstimator(const VaVarianceOptions& options, double range_sigma_at_unit_sinr_m);
+  RangeVarianceEstimator(const RangeVarianceOptions& options, double range_sigma_at_unit_sinr_m);
 
   /// Records the amplitude |alpha_hat| of an MPC associated to va_id at the agent's estimated
   /// position (Eq. 3.27, 3.30 use EKF positions online).
@@ -77,7 +78,7 @@ class VaVarianceEstimator {
   /// Range variance (m^2) for this step. When the VA was associated now and its window holds
   /// enough samples, the Eq. (3.26)/(3.28) estimate; SINR 0 or complex gives sigma_VA,max^2;
   /// otherwise the average of the VA's previous variances, or sigma_VA^2 if there are none.
-  VaVariance Variance(int va_id, bool associated_now);
+  RangeVariance Variance(int va_id, bool associated_now);
 
   /// The variance the VA would get from the fallback rule now: the average of its previous
   /// variances, or sigma_VA^2 (m^2). Records nothing.
@@ -108,9 +109,9 @@ class VaVarianceEstimator {
   };
   [[nodiscard]] double FallbackVariance(const VaHistory& history) const;
 
-  VaVarianceOptions options_;
+  RangeVarianceOptions options_;
   double sigma1_squared_m2_ = 0.0;
   std::unordered_map<int, VaHistory> vas_;
 };
 
-}  // namespace mirage::methods::mint
+}  // namespace mirage::estimation

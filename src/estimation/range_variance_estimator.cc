@@ -1,13 +1,13 @@
 // SPDX-License-Identifier: MIT
-#include "mirage/methods/mint/va_variance_estimator.h"
+#include "mirage/estimation/range_variance_estimator.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
-namespace mirage::methods::mint {
+namespace mirage::estimation {
 
-std::vector<std::string> Validate(const VaVarianceOptions& options) {
+std::vector<std::string> Validate(const RangeVarianceOptions& options) {
   std::vector<std::string> problems;
   if (!(options.window_min_m > 0.0) || !std::isfinite(options.window_min_m)) problems.push_back("window_min_m must be > 0 m");
   if (!(options.window_max_m >= options.window_min_m) || !std::isfinite(options.window_max_m)) {
@@ -27,10 +27,10 @@ std::vector<std::string> Validate(const VaVarianceOptions& options) {
   return problems;
 }
 
-VaVarianceEstimator::VaVarianceEstimator(const VaVarianceOptions& options, double range_sigma_at_unit_sinr_m)
+RangeVarianceEstimator::RangeVarianceEstimator(const RangeVarianceOptions& options, double range_sigma_at_unit_sinr_m)
     : options_(options), sigma1_squared_m2_(range_sigma_at_unit_sinr_m * range_sigma_at_unit_sinr_m) {}
 
-void VaVarianceEstimator::AddSample(int va_id, const Vec2& agent_m, double amplitude) {
+void RangeVarianceEstimator::AddSample(int va_id, const Vec2& agent_m, double amplitude) {
   VaHistory& history = vas_[va_id];
   history.samples.push_back({agent_m, amplitude * amplitude});
   // Design choice: the history is the contiguous run of samples within d_max of the newest one;
@@ -50,24 +50,24 @@ void VaVarianceEstimator::AddSample(int va_id, const Vec2& agent_m, double ampli
   history.samples.erase(history.samples.begin(), history.samples.begin() + static_cast<std::ptrdiff_t>(keep_from));
 }
 
-double VaVarianceEstimator::FallbackVariance(const VaHistory& history) const {
+double RangeVarianceEstimator::FallbackVariance(const VaHistory& history) const {
   if (history.variance_count == 0) return options_.default_sigma_m * options_.default_sigma_m;
   return history.variance_sum / history.variance_count;
 }
 
-double VaVarianceEstimator::CurrentVariance(int va_id) const {
+double RangeVarianceEstimator::CurrentVariance(int va_id) const {
   const auto it = vas_.find(va_id);
   if (it == vas_.end()) return options_.default_sigma_m * options_.default_sigma_m;
   return FallbackVariance(it->second);
 }
 
-std::optional<double> VaVarianceEstimator::LastEstimatedVariance(int va_id) const {
+std::optional<double> RangeVarianceEstimator::LastEstimatedVariance(int va_id) const {
   const auto it = vas_.find(va_id);
   if (it == vas_.end() || it->second.variance_count == 0) return std::nullopt;
   return it->second.last_variance;
 }
 
-std::optional<AmplitudeMoments> VaVarianceEstimator::Moments(int va_id, const Vec2& at_m) const {
+std::optional<AmplitudeMoments> RangeVarianceEstimator::Moments(int va_id, const Vec2& at_m) const {
   const auto it = vas_.find(va_id);
   if (it == vas_.end()) return std::nullopt;
   // Eq. (3.27): moments of Y = |alpha_hat|^2 over the window; m2 is the (unbiased) variance.
@@ -89,7 +89,7 @@ std::optional<AmplitudeMoments> VaVarianceEstimator::Moments(int va_id, const Ve
   return m;
 }
 
-VaVariance VaVarianceEstimator::Variance(int va_id, bool associated_now) {
+RangeVariance RangeVarianceEstimator::Variance(int va_id, bool associated_now) {
   VaHistory& history = vas_[va_id];
   const double max_variance = options_.max_variance_factor * options_.default_sigma_m * options_.default_sigma_m;
   // Associated now means the newest sample was taken at the current position.
@@ -100,7 +100,7 @@ VaVariance VaVarianceEstimator::Variance(int va_id, bool associated_now) {
   const double m1 = moments->mean;
   const double m2 = moments->variance;
 
-  VaVariance out{max_variance, 0.0, moments};
+  RangeVariance out{max_variance, 0.0, moments};
   const double discriminant = m1 * m1 - m2;
   if (discriminant > 0.0) {
     // Eq. (3.26); m2 >= 0 makes the denominator >= 0, and 0 only for constant amplitudes.
@@ -117,4 +117,4 @@ VaVariance VaVarianceEstimator::Variance(int va_id, bool associated_now) {
   return out;
 }
 
-}  // namespace mirage::methods::mint
+}  // namespace mirage::estimation

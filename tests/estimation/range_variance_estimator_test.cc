@@ -2,7 +2,7 @@
 // Online SINR and range-variance estimation per VA (Lafer 2014 Sec. 3.6, digest Sec. 2.9):
 // the moment estimator of Eq. (3.26) on seeded Rician amplitudes, the CRLB variance of
 // Eq. (3.28) with its clamps, the fallback rules and the sliding spatial window of Eq. (3.30).
-#include "mirage/methods/mint/va_variance_estimator.h"
+#include "mirage/estimation/range_variance_estimator.h"
 
 #include <algorithm>
 #include <cmath>
@@ -13,7 +13,7 @@
 
 #include "mirage/core/rng.h"
 
-namespace mirage::methods::mint {
+namespace mirage::estimation {
 namespace {
 
 // c / (sqrt(8) pi beta) of the T_p = 0.5 ns RC pulse: 6.3 cm (digest Sec. 2.9).
@@ -31,7 +31,7 @@ double RicianAmplitude(core::Rng& rng, double k_factor) {
 // Walks 1 m along +x in 5 cm steps starting at start_x_m (21 samples, so the window spans
 // d_max = 1 m up to rounding: 20 or 21 samples, both >= N_min = 15 and >= d_min = 0.9 m) and
 // returns the variance of the last step.
-VaVariance WalkOneMetre(VaVarianceEstimator& estimator, core::Rng& rng, double k_factor, double start_x_m) {
+RangeVariance WalkOneMetre(RangeVarianceEstimator& estimator, core::Rng& rng, double k_factor, double start_x_m) {
   for (int i = 0; i <= 20; ++i) {
     estimator.AddSample(kVa, Vec2(start_x_m + 0.05 * i, 1.0), RicianAmplitude(rng, k_factor));
   }
@@ -39,7 +39,7 @@ VaVariance WalkOneMetre(VaVarianceEstimator& estimator, core::Rng& rng, double k
 }
 
 // Adds constant amplitudes along +x with the given spacing; returns the last position.
-Vec2 AddConstant(VaVarianceEstimator& estimator, int count, double spacing_m, double amplitude, double start_x_m = 0.0) {
+Vec2 AddConstant(RangeVarianceEstimator& estimator, int count, double spacing_m, double amplitude, double start_x_m = 0.0) {
   Vec2 p(start_x_m, 0.0);
   for (int i = 0; i < count; ++i) {
     p = Vec2(start_x_m + spacing_m * i, 0.0);
@@ -48,19 +48,19 @@ Vec2 AddConstant(VaVarianceEstimator& estimator, int count, double spacing_m, do
   return p;
 }
 
-TEST(VaVarianceEstimator, EstimatesTheRicianKFactorOfTenDecibelsFromTwentySampleWindows) {
+TEST(RangeVarianceEstimator, EstimatesTheRicianKFactorOfTenDecibelsFromTwentySampleWindows) {
   // Arrange: 200 independent 1 m windows (20-21 samples each) of K = |a|^2 / s^2 = 10 amplitudes.
   // A single window's estimate spreads by about 1.7 dB (sd, simulated) with a +0.2 dB small-sample
   // bias, so the mean over 200 windows has a standard error of about 0.12 dB: 1 dB is the
   // bias plus more than 6 standard errors.
-  const VaVarianceOptions options;
+  const RangeVarianceOptions options;
   core::Rng rng(2024, 1);
   std::vector<double> estimates_db;
 
   // Act
   for (int rep = 0; rep < 200; ++rep) {
-    VaVarianceEstimator estimator(options, kSigma1M);
-    const VaVariance v = WalkOneMetre(estimator, rng, 10.0, 0.0);
+    RangeVarianceEstimator estimator(options, kSigma1M);
+    const RangeVariance v = WalkOneMetre(estimator, rng, 10.0, 0.0);
     ASSERT_TRUE(v.sinr.has_value()) << "window " << rep << " gave no estimate";
     ASSERT_GT(*v.sinr, 0.0) << "window " << rep;
     estimates_db.push_back(Db(*v.sinr));
@@ -78,14 +78,14 @@ TEST(VaVarianceEstimator, EstimatesTheRicianKFactorOfTenDecibelsFromTwentySample
   EXPECT_LT(sd_db, 3.0);
 }
 
-TEST(VaVarianceEstimator, TurnsTheSinrEstimateIntoTheCrlbVarianceOfEq328) {
+TEST(RangeVarianceEstimator, TurnsTheSinrEstimateIntoTheCrlbVarianceOfEq328) {
   // Arrange
-  const VaVarianceOptions options;
-  VaVarianceEstimator estimator(options, kSigma1M);
+  const RangeVarianceOptions options;
+  RangeVarianceEstimator estimator(options, kSigma1M);
   core::Rng rng(7, 0);
 
   // Act
-  const VaVariance v = WalkOneMetre(estimator, rng, 10.0, 0.0);
+  const RangeVariance v = WalkOneMetre(estimator, rng, 10.0, 0.0);
   const auto m = estimator.Moments(kVa, Vec2(1.0, 1.0));
 
   // Assert: Eq. (3.26) with m2 = Var[Y] of the window, then sigma_1^2 / SINR, inside
@@ -99,14 +99,14 @@ TEST(VaVarianceEstimator, TurnsTheSinrEstimateIntoTheCrlbVarianceOfEq328) {
   EXPECT_DOUBLE_EQ(v.variance_m2, expected);
 }
 
-TEST(VaVarianceEstimator, ClampsTheVarianceAtTheFloorForNoiselessAmplitudes) {
+TEST(RangeVarianceEstimator, ClampsTheVarianceAtTheFloorForNoiselessAmplitudes) {
   // Arrange: constant amplitudes, Var[Y] = 0, SINR infinite, variance 0 before the clamp.
-  const VaVarianceOptions options;
-  VaVarianceEstimator estimator(options, kSigma1M);
+  const RangeVarianceOptions options;
+  RangeVarianceEstimator estimator(options, kSigma1M);
   AddConstant(estimator, 21, 0.05, 0.3);
 
   // Act
-  const VaVariance v = estimator.Variance(kVa, true);
+  const RangeVariance v = estimator.Variance(kVa, true);
 
   // Assert
   ASSERT_TRUE(v.sinr.has_value());
@@ -114,15 +114,15 @@ TEST(VaVarianceEstimator, ClampsTheVarianceAtTheFloorForNoiselessAmplitudes) {
   EXPECT_DOUBLE_EQ(v.variance_m2, options.min_sigma_m * options.min_sigma_m);
 }
 
-TEST(VaVarianceEstimator, ClampsTheVarianceAtTenTimesTheDefaultForAWideRangeSigma) {
+TEST(RangeVarianceEstimator, ClampsTheVarianceAtTenTimesTheDefaultForAWideRangeSigma) {
   // Arrange: sigma_1 = 2 m, so sigma_1^2 / SINR ~ 0.4 m^2 at 10 dB, far above 10 * 0.07^2 =
   // 0.049 m^2 (it would take an estimate above 19 dB, 5 sd of the estimator, to stay below).
-  const VaVarianceOptions options;
-  VaVarianceEstimator estimator(options, 2.0);
+  const RangeVarianceOptions options;
+  RangeVarianceEstimator estimator(options, 2.0);
   core::Rng rng(11, 0);
 
   // Act
-  const VaVariance v = WalkOneMetre(estimator, rng, 10.0, 0.0);
+  const RangeVariance v = WalkOneMetre(estimator, rng, 10.0, 0.0);
 
   // Assert: an estimate was made, and the clamp applied.
   ASSERT_TRUE(v.sinr.has_value());
@@ -130,15 +130,15 @@ TEST(VaVarianceEstimator, ClampsTheVarianceAtTenTimesTheDefaultForAWideRangeSigm
   EXPECT_DOUBLE_EQ(v.variance_m2, options.max_variance_factor * options.default_sigma_m * options.default_sigma_m);
 }
 
-TEST(VaVarianceEstimator, GivesTheMaximumVarianceWhenTheSinrIsZeroOrComplex) {
+TEST(RangeVarianceEstimator, GivesTheMaximumVarianceWhenTheSinrIsZeroOrComplex) {
   // Arrange: Y alternates 0 and 2 (amplitudes 0 and sqrt 2): m1 = 1, unbiased Var[Y] > 1 = m1^2,
   // so m1^2 - Var < 0 and Eq. (3.26) has no real solution.
-  const VaVarianceOptions options;
-  VaVarianceEstimator estimator(options, kSigma1M);
+  const RangeVarianceOptions options;
+  RangeVarianceEstimator estimator(options, kSigma1M);
   for (int i = 0; i <= 20; ++i) estimator.AddSample(kVa, Vec2(0.05 * i, 0.0), i % 2 == 0 ? 0.0 : std::sqrt(2.0));
 
   // Act
-  const VaVariance v = estimator.Variance(kVa, true);
+  const RangeVariance v = estimator.Variance(kVa, true);
 
   // Assert
   ASSERT_TRUE(v.sinr.has_value());
@@ -146,11 +146,11 @@ TEST(VaVarianceEstimator, GivesTheMaximumVarianceWhenTheSinrIsZeroOrComplex) {
   EXPECT_DOUBLE_EQ(v.variance_m2, options.max_variance_factor * options.default_sigma_m * options.default_sigma_m);
 }
 
-TEST(VaVarianceEstimator, GivesRayleighAmplitudesTheMaximumVarianceOftenAndNeverAKFactorTenVa) {
+TEST(RangeVarianceEstimator, GivesRayleighAmplitudesTheMaximumVarianceOftenAndNeverAKFactorTenVa) {
   // Arrange: K = 0 (Rayleigh): Var[Y] = m1^2 in expectation, so the sample discriminant
   // m1^2 - Var is negative in about 36 % of 21-sample windows (simulated), which the rule maps to
   // sigma_VA,max^2; the others give small SINRs. K = 10 windows never reach the maximum.
-  const VaVarianceOptions options;
+  const RangeVarianceOptions options;
   const double max_variance = options.max_variance_factor * options.default_sigma_m * options.default_sigma_m;
   core::Rng rng(99, 3);
   int rayleigh_at_max = 0;
@@ -160,11 +160,11 @@ TEST(VaVarianceEstimator, GivesRayleighAmplitudesTheMaximumVarianceOftenAndNever
 
   // Act
   for (int rep = 0; rep < kWindows; ++rep) {
-    VaVarianceEstimator rayleigh(options, kSigma1M);
-    const VaVariance v = WalkOneMetre(rayleigh, rng, 0.0, 0.0);
+    RangeVarianceEstimator rayleigh(options, kSigma1M);
+    const RangeVariance v = WalkOneMetre(rayleigh, rng, 0.0, 0.0);
     rayleigh_variances.push_back(v.variance_m2);
     if (v.variance_m2 == max_variance) ++rayleigh_at_max;
-    VaVarianceEstimator rician(options, kSigma1M);
+    RangeVarianceEstimator rician(options, kSigma1M);
     if (WalkOneMetre(rician, rng, 10.0, 0.0).variance_m2 == max_variance) ++rician_at_max;
   }
 
@@ -177,28 +177,28 @@ TEST(VaVarianceEstimator, GivesRayleighAmplitudesTheMaximumVarianceOftenAndNever
   EXPECT_GT(rayleigh_variances[kWindows / 2], options.default_sigma_m * options.default_sigma_m);
 }
 
-TEST(VaVarianceEstimator, UsesTheDefaultVarianceBeforeMinSamples) {
+TEST(RangeVarianceEstimator, UsesTheDefaultVarianceBeforeMinSamples) {
   // Arrange: 10 samples over 1 m (extent fine, count below N_min = 15).
-  const VaVarianceOptions options;
-  VaVarianceEstimator estimator(options, kSigma1M);
+  const RangeVarianceOptions options;
+  RangeVarianceEstimator estimator(options, kSigma1M);
   AddConstant(estimator, 10, 0.1, 0.5);
 
   // Act
-  const VaVariance v = estimator.Variance(kVa, true);
+  const RangeVariance v = estimator.Variance(kVa, true);
 
   // Assert
   EXPECT_FALSE(v.sinr.has_value());
   EXPECT_DOUBLE_EQ(v.variance_m2, options.default_sigma_m * options.default_sigma_m);
 }
 
-TEST(VaVarianceEstimator, UsesTheDefaultVarianceBeforeTheWindowSpansMinExtent) {
+TEST(RangeVarianceEstimator, UsesTheDefaultVarianceBeforeTheWindowSpansMinExtent) {
   // Arrange: 30 samples (count fine) 2 cm apart: the extent 0.58 m is below d_min = 0.9 m.
-  const VaVarianceOptions options;
-  VaVarianceEstimator estimator(options, kSigma1M);
+  const RangeVarianceOptions options;
+  RangeVarianceEstimator estimator(options, kSigma1M);
   const Vec2 last = AddConstant(estimator, 30, 0.02, 0.5);
 
   // Act
-  const VaVariance v = estimator.Variance(kVa, true);
+  const RangeVariance v = estimator.Variance(kVa, true);
 
   // Assert
   EXPECT_FALSE(estimator.Moments(kVa, last).has_value());
@@ -206,39 +206,39 @@ TEST(VaVarianceEstimator, UsesTheDefaultVarianceBeforeTheWindowSpansMinExtent) {
   EXPECT_DOUBLE_EQ(v.variance_m2, options.default_sigma_m * options.default_sigma_m);
 }
 
-TEST(VaVarianceEstimator, FallsBackToTheAverageOfPreviousVariancesBeforeEnoughSamples) {
+TEST(RangeVarianceEstimator, FallsBackToTheAverageOfPreviousVariancesBeforeEnoughSamples) {
   // Arrange: two estimates for the VA, then the window is restarted far away (d_max drops the
   // old samples) with only a few samples.
-  const VaVarianceOptions options;
-  VaVarianceEstimator estimator(options, kSigma1M);
+  const RangeVarianceOptions options;
+  RangeVarianceEstimator estimator(options, kSigma1M);
   core::Rng rng(5, 0);
-  const VaVariance first = WalkOneMetre(estimator, rng, 10.0, 0.0);
+  const RangeVariance first = WalkOneMetre(estimator, rng, 10.0, 0.0);
   estimator.AddSample(kVa, Vec2(1.05, 1.0), RicianAmplitude(rng, 3.0));
-  const VaVariance second = estimator.Variance(kVa, true);
+  const RangeVariance second = estimator.Variance(kVa, true);
   ASSERT_TRUE(first.sinr.has_value());
   ASSERT_TRUE(second.sinr.has_value());
   ASSERT_NE(first.variance_m2, second.variance_m2);
   for (int i = 0; i < 5; ++i) estimator.AddSample(kVa, Vec2(10.0 + 0.05 * i, 1.0), 1.0);
 
   // Act
-  const VaVariance fallback = estimator.Variance(kVa, true);
+  const RangeVariance fallback = estimator.Variance(kVa, true);
 
   // Assert
   EXPECT_FALSE(fallback.sinr.has_value());
   EXPECT_DOUBLE_EQ(fallback.variance_m2, 0.5 * (first.variance_m2 + second.variance_m2));
 }
 
-TEST(VaVarianceEstimator, FallsBackToTheAverageWhenTheVaWasNotAssociatedNow) {
+TEST(RangeVarianceEstimator, FallsBackToTheAverageWhenTheVaWasNotAssociatedNow) {
   // Arrange: a full window and one estimate.
-  const VaVarianceOptions options;
-  VaVarianceEstimator estimator(options, kSigma1M);
+  const RangeVarianceOptions options;
+  RangeVarianceEstimator estimator(options, kSigma1M);
   core::Rng rng(6, 0);
-  const VaVariance estimate = WalkOneMetre(estimator, rng, 10.0, 0.0);
+  const RangeVariance estimate = WalkOneMetre(estimator, rng, 10.0, 0.0);
   ASSERT_TRUE(estimate.sinr.has_value());
 
   // Act: the window is still full, but the VA was not associated at this step.
-  const VaVariance not_associated = estimator.Variance(kVa, false);
-  const VaVariance again = estimator.Variance(kVa, false);
+  const RangeVariance not_associated = estimator.Variance(kVa, false);
+  const RangeVariance again = estimator.Variance(kVa, false);
 
   // Assert: the previous average, and the fallback itself is not averaged in.
   EXPECT_FALSE(not_associated.sinr.has_value());
@@ -246,13 +246,13 @@ TEST(VaVarianceEstimator, FallsBackToTheAverageWhenTheVaWasNotAssociatedNow) {
   EXPECT_DOUBLE_EQ(again.variance_m2, estimate.variance_m2);
 }
 
-TEST(VaVarianceEstimator, FallsBackToTheDefaultForAVaNeverSeen) {
+TEST(RangeVarianceEstimator, FallsBackToTheDefaultForAVaNeverSeen) {
   // Arrange
-  const VaVarianceOptions options;
-  VaVarianceEstimator estimator(options, kSigma1M);
+  const RangeVarianceOptions options;
+  RangeVarianceEstimator estimator(options, kSigma1M);
 
   // Act
-  const VaVariance v = estimator.Variance(42, false);
+  const RangeVariance v = estimator.Variance(42, false);
 
   // Assert
   EXPECT_FALSE(v.sinr.has_value());
@@ -260,10 +260,10 @@ TEST(VaVarianceEstimator, FallsBackToTheDefaultForAVaNeverSeen) {
   EXPECT_DOUBLE_EQ(estimator.CurrentVariance(43), options.default_sigma_m * options.default_sigma_m);
 }
 
-TEST(VaVarianceEstimator, ComputesTheMeanAndUnbiasedVarianceOfTheEnergies) {
+TEST(RangeVarianceEstimator, ComputesTheMeanAndUnbiasedVarianceOfTheEnergies) {
   // Arrange: 16 samples 1/16 m apart (exact in binary) with Y = |alpha|^2 in {1, 4}.
-  VaVarianceOptions options;
-  VaVarianceEstimator estimator(options, kSigma1M);
+  RangeVarianceOptions options;
+  RangeVarianceEstimator estimator(options, kSigma1M);
   std::vector<double> y;
   for (int i = 0; i <= 15; ++i) {
     const double amplitude = i % 4 == 0 ? 2.0 : 1.0;
@@ -287,10 +287,10 @@ TEST(VaVarianceEstimator, ComputesTheMeanAndUnbiasedVarianceOfTheEnergies) {
   EXPECT_DOUBLE_EQ(moments->variance, variance);
 }
 
-TEST(VaVarianceEstimator, DropsSamplesFartherThanMaxExtentFromTheNewest) {
+TEST(RangeVarianceEstimator, DropsSamplesFartherThanMaxExtentFromTheNewest) {
   // Arrange: 49 samples 1/16 m apart along 3 m; d_max = 1 m keeps the newest 17 (0 .. 16/16 m).
-  const VaVarianceOptions options;
-  VaVarianceEstimator estimator(options, kSigma1M);
+  const RangeVarianceOptions options;
+  RangeVarianceEstimator estimator(options, kSigma1M);
   for (int i = 0; i <= 48; ++i) estimator.AddSample(kVa, Vec2(i / 16.0, 0.0), 1.0);
 
   // Act
@@ -303,10 +303,10 @@ TEST(VaVarianceEstimator, DropsSamplesFartherThanMaxExtentFromTheNewest) {
   EXPECT_FALSE(at_start.has_value());
 }
 
-TEST(VaVarianceEstimator, LetsTheWindowExpireWhenTheAgentMovesAway) {
+TEST(RangeVarianceEstimator, LetsTheWindowExpireWhenTheAgentMovesAway) {
   // Arrange: a full window over x in [0, 1] m.
-  const VaVarianceOptions options;
-  VaVarianceEstimator estimator(options, kSigma1M);
+  const RangeVarianceOptions options;
+  RangeVarianceEstimator estimator(options, kSigma1M);
   for (int i = 0; i <= 16; ++i) estimator.AddSample(kVa, Vec2(i / 16.0, 0.0), 1.0);
 
   // Act
@@ -321,13 +321,13 @@ TEST(VaVarianceEstimator, LetsTheWindowExpireWhenTheAgentMovesAway) {
   EXPECT_FALSE(beside.has_value());
 }
 
-TEST(VaVarianceEstimator, ReportsTheAverageOfRecordedVariancesAsCurrentVarianceWithoutRecording) {
+TEST(RangeVarianceEstimator, ReportsTheAverageOfRecordedVariancesAsCurrentVarianceWithoutRecording) {
   // Arrange
-  const VaVarianceOptions options;
-  VaVarianceEstimator estimator(options, kSigma1M);
+  const RangeVarianceOptions options;
+  RangeVarianceEstimator estimator(options, kSigma1M);
   core::Rng rng(8, 0);
-  const VaVariance first = WalkOneMetre(estimator, rng, 10.0, 0.0);
-  const VaVariance second = WalkOneMetre(estimator, rng, 10.0, 1.05);
+  const RangeVariance first = WalkOneMetre(estimator, rng, 10.0, 0.0);
+  const RangeVariance second = WalkOneMetre(estimator, rng, 10.0, 1.05);
   ASSERT_TRUE(first.sinr.has_value());
   ASSERT_TRUE(second.sinr.has_value());
   const double average = 0.5 * (first.variance_m2 + second.variance_m2);
@@ -344,18 +344,18 @@ TEST(VaVarianceEstimator, ReportsTheAverageOfRecordedVariancesAsCurrentVarianceW
   EXPECT_DOUBLE_EQ(after_reset, options.default_sigma_m * options.default_sigma_m);
 }
 
-TEST(VaVarianceEstimator, KeepsTheVariancesOfDifferentVasApart) {
+TEST(RangeVarianceEstimator, KeepsTheVariancesOfDifferentVasApart) {
   // Arrange: VA 1 gets constant amplitudes (floor), VA 2 alternating ones (maximum).
-  const VaVarianceOptions options;
-  VaVarianceEstimator estimator(options, kSigma1M);
+  const RangeVarianceOptions options;
+  RangeVarianceEstimator estimator(options, kSigma1M);
   for (int i = 0; i <= 20; ++i) {
     estimator.AddSample(1, Vec2(0.05 * i, 0.0), 1.0);
     estimator.AddSample(2, Vec2(0.05 * i, 0.0), i % 2 == 0 ? 0.0 : std::sqrt(2.0));
   }
 
   // Act
-  const VaVariance one = estimator.Variance(1, true);
-  const VaVariance two = estimator.Variance(2, true);
+  const RangeVariance one = estimator.Variance(1, true);
+  const RangeVariance two = estimator.Variance(2, true);
 
   // Assert
   EXPECT_DOUBLE_EQ(one.variance_m2, options.min_sigma_m * options.min_sigma_m);
@@ -366,11 +366,11 @@ bool Mentions(const std::vector<std::string>& problems, const std::string& key) 
   return std::any_of(problems.begin(), problems.end(), [&](const std::string& p) { return p.find(key) != std::string::npos; });
 }
 
-TEST(VaVarianceOptions, AcceptsTheDefaults) { EXPECT_TRUE(Validate(VaVarianceOptions{}).empty()); }
+TEST(RangeVarianceOptions, AcceptsTheDefaults) { EXPECT_TRUE(Validate(RangeVarianceOptions{}).empty()); }
 
-TEST(VaVarianceOptions, NamesEveryInvalidField) {
+TEST(RangeVarianceOptions, NamesEveryInvalidField) {
   const auto with = [](auto change) {
-    VaVarianceOptions o;
+    RangeVarianceOptions o;
     change(o);
     return Validate(o);
   };
@@ -387,4 +387,4 @@ TEST(VaVarianceOptions, NamesEveryInvalidField) {
 }
 
 }  // namespace
-}  // namespace mirage::methods::mint
+}  // namespace mirage::estimation
