@@ -71,7 +71,11 @@ void ParseRangesCsv(std::string_view text, const std::string& file, pipeline::Re
     if (recording.steps.empty() || t_s > recording.steps.back().t_s) {
       pipeline::RecordedStep step;
       step.t_s = t_s;
-      for (std::size_t a = 0; a < recording.anchor_ids.size(); ++a) step.anchors.push_back({static_cast<int>(a), {}});
+      for (std::size_t a = 0; a < recording.anchor_ids.size(); ++a) {
+        core::RangeSet set;
+        set.anchor_index = static_cast<int>(a);
+        step.anchors.push_back(std::move(set));
+      }
       recording.steps.push_back(std::move(step));
     } else if (t_s < recording.steps.back().t_s) {
       csv.Fail("t_s", fmt::format("time goes backwards (the previous row has t_s = {})", recording.steps.back().t_s));

@@ -162,7 +162,11 @@ TEST_F(RecordedFiles, WriteThenLoadGivesTheSameDoubles) {
   for (int k = 0; k < 5; ++k) {
     pipeline::RecordedStep step;
     step.t_s = 0.1 * k;  // 0.30000000000000004 must come back exactly
-    step.anchors = {{0, {{1.0 / 3.0 + k, 0.123456789012345678}, {M_PI, std::nullopt}}}, {1, {{std::sqrt(2.0), 1e-300}}}};
+    step.anchors.resize(2);
+    step.anchors[0].anchor_index = 0;
+    step.anchors[0].ranges = {{1.0 / 3.0 + k, 0.123456789012345678}, {M_PI, std::nullopt}};
+    step.anchors[1].anchor_index = 1;
+    step.anchors[1].ranges = {{std::sqrt(2.0), 1e-300}};
     r.steps.push_back(step);
     r.truth.push_back({step.t_s, Vec2(std::exp(1.0), -1.0 / 7.0 * k)});
   }

@@ -287,7 +287,8 @@ TrackRun PulledThroughTheWestWall(bool constrain) {
   for (int k = 1; k <= 20; ++k) {
     std::vector<core::AnchorRanges> ranges;
     for (int a = 0; a < vas.anchor_count(); ++a) {
-      core::AnchorRanges anchor{a, {}};
+      core::AnchorRanges anchor;
+    anchor.anchor_index = a;
       // The VAs visible from inside, at the distances from the outside point.
       for (const int id : geometry::VisibleVirtualAnchors(vas, a, plan, start, 1)) {
         anchor.ranges.push_back({(vas[id].position_m - outside).norm() + rng.Normal(0.0, model.range_sigma_m), 1.0});

@@ -33,11 +33,20 @@ int IdOf(const geometry::VirtualAnchorSet& vas, int anchor, const std::vector<in
 double RangeTo(const geometry::VirtualAnchorSet& vas, int id, const Vec2& p_m) { return (vas[id].position_m - p_m).norm(); }
 
 // Noise-free ranges of every VA up to order 1 visible from p_m, both anchors.
+// The ranges of one anchor.
+core::RangeSet Set(int anchor, std::vector<core::RangeMeasurement> ranges) {
+  core::RangeSet set;
+  set.anchor_index = anchor;
+  set.ranges = std::move(ranges);
+  return set;
+}
+
 std::vector<core::AnchorRanges> ExactRanges(const geometry::VirtualAnchorSet& vas, const geometry::FloorPlan& plan,
                                             const Vec2& p_m) {
   std::vector<core::AnchorRanges> out;
   for (int a = 0; a < vas.anchor_count(); ++a) {
-    core::AnchorRanges anchor{a, {}};
+    core::AnchorRanges anchor;
+    anchor.anchor_index = a;
     for (const int id : geometry::VisibleVirtualAnchors(vas, a, plan, p_m, 1)) anchor.ranges.push_back({RangeTo(vas, id, p_m), 1.0});
     out.push_back(anchor);
   }
@@ -51,12 +60,11 @@ TEST(ScorePosition, CountsRangesWithinTheToleranceAsMatchesOfTheVisibleVas) {
   const auto plan = EmptySquareRoom();
   const auto vas = SquareRoomVas(plan, 1);
   const std::vector<core::AnchorRanges> ranges{
-      {0,
-       {{RangeTo(vas, IdOf(vas, 0, {}), kAgent), 1.0},
-        {RangeTo(vas, IdOf(vas, 0, {0}), kAgent) + 0.04, 0.5},
-        {RangeTo(vas, IdOf(vas, 0, {1}), kAgent) - 0.06, 0.5},
-        {9.5, 0.1}}},
-      {1, {}}};
+      Set(0, {{RangeTo(vas, IdOf(vas, 0, {}), kAgent), 1.0},
+              {RangeTo(vas, IdOf(vas, 0, {0}), kAgent) + 0.04, 0.5},
+              {RangeTo(vas, IdOf(vas, 0, {1}), kAgent) - 0.06, 0.5},
+              {9.5, 0.1}}),
+      Set(1, {})};
   const RelocalizationOptions options;
 
   // Act
@@ -98,7 +106,7 @@ TEST(ScorePosition, IgnoresVasThatAnObstacleBlocks) {
   const int los = IdOf(vas, 0, {});
   ASSERT_FALSE(geometry::IsVisible(vas, los, plan, behind));
   const auto visible = geometry::VisibleVirtualAnchors(vas, 0, plan, behind, 1);
-  std::vector<core::AnchorRanges> ranges{{0, {{RangeTo(vas, los, behind), 1.0}}}};
+  std::vector<core::AnchorRanges> ranges{Set(0, {{RangeTo(vas, los, behind), 1.0}})};
   for (const int id : visible) ranges[0].ranges.push_back({RangeTo(vas, id, behind), 0.5});
 
   // Act
@@ -169,7 +177,7 @@ TEST(SearchPosition, ReturnsNothingForClutterOnly) {
   const auto plan = EmptySquareRoom();
   const auto vas = SquareRoomVas(plan, 1);
   core::Rng rng(3, 0);
-  std::vector<core::AnchorRanges> ranges{{0, {}}, {1, {}}};
+  std::vector<core::AnchorRanges> ranges{Set(0, {}), Set(1, {})};
   for (auto& anchor : ranges) {
     for (int i = 0; i < 3; ++i) anchor.ranges.push_back({rng.Uniform(0.0, 12.0), 0.1});
   }

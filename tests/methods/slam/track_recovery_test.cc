@@ -57,8 +57,10 @@ std::vector<core::AnchorRanges> Measure(const Vec2& p_m, int clutter, core::Rng&
 
 TEST(LosCandidates, AreTheIntersectionsOfTheEarliestRangesCircles) {
   std::vector<core::AnchorRanges> m(2);
-  m[0] = {0, {{9.0, {}}, {2.5, {}}, {7.0, {}}}};  // the earliest: 2.5 m
-  m[1] = {1, {{2.5, {}}}};
+  m[0].anchor_index = 0;
+  m[0].ranges = {{9.0, {}}, {2.5, {}}, {7.0, {}}};  // the earliest: 2.5 m
+  m[1].anchor_index = 1;
+  m[1].ranges = {{2.5, {}}};
   const auto c = LosCandidates(kAnchors, m, 1);
   ASSERT_EQ(c.size(), 2u);
   EXPECT_NEAR(c[0].x(), 2.0, 1e-12);
@@ -71,8 +73,10 @@ TEST(LosCandidates, AreTheIntersectionsOfTheEarliestRangesCircles) {
 
 TEST(LosCandidates, CirclesMissingByLessThanTheSlackTouchBetweenThem) {
   std::vector<core::AnchorRanges> m(2);
-  m[0] = {0, {{1.98, {}}}};
-  m[1] = {1, {{1.98, {}}}};  // 4 cm short of touching
+  m[0].anchor_index = 0;
+  m[0].ranges = {{1.98, {}}};
+  m[1].anchor_index = 1;
+  m[1].ranges = {{1.98, {}}};  // 4 cm short of touching
   const auto c = LosCandidates(kAnchors, m, 1);
   ASSERT_EQ(c.size(), 1u);
   EXPECT_NEAR(c[0].x(), 2.0, 1e-12);
