@@ -20,7 +20,7 @@
 #include "mirage/estimation/motion/constant_velocity.h"
 #include "mirage/geometry/image_path.h"
 #include "mirage/geometry/trajectory.h"
-#include "mirage/pipeline/cir_link_signal.h"
+#include "mirage/methods/coop/cir_link_signal.h"
 #include "mirage/pipeline/parallel_jobs.h"
 
 namespace mirage::pipeline {
@@ -149,7 +149,7 @@ std::vector<std::vector<double>> PositionErrorBound(const CoopExperimentConfig& 
   options.wall_sigma_m = v.variant.wall_sigma_m;
   methods::coop::CoopTracker model(options, plan, v.links, config.antennas,
                                    config.anchor ? std::optional<Vec2>(config.anchor->position_m) : std::nullopt,
-                                   PulseFactsOf(v.synthesizer->pulse()));
+                                   methods::coop::PulseFactsOf(v.synthesizer->pulse()));
   const int agents = v.variant.agents;
   const std::vector<Vec2> start = AgentsAt(truth, agents, 0);
   model.Initialize(start, 0.0);
@@ -200,7 +200,7 @@ CoopRun RunOne(const CoopExperimentConfig& config, const VariantContext& v,
   const Vec2 anchor_m = config.anchor ? config.anchor->position_m : Vec2::Zero();
   methods::coop::CoopTracker tracker(options, provided.plan, v.links, config.antennas,
                                      v.variant.anchor ? std::optional<Vec2>(anchor_m) : std::nullopt,
-                                     PulseFactsOf(v.synthesizer->pulse()));
+                                     methods::coop::PulseFactsOf(v.synthesizer->pulse()));
   const int agents = v.variant.agents;
   tracker.Initialize(AgentsAt(truth, agents, 0), 0.0);
   // Per link, noise and DM streams named after the link, so that a link sees the same draws in
@@ -248,7 +248,7 @@ CoopRun RunOne(const CoopExperimentConfig& config, const VariantContext& v,
         cirs[l] = v.synthesizer->Synthesize(link_channel.paths, link_channel.dm_reference_m, diffuse_rng[l],
                                             noise_rng[l]).cir;
       }
-      std::vector<CirLinkSignal> signals;
+      std::vector<methods::coop::CirLinkSignal> signals;
       signals.reserve(cirs.size());
       for (const auto& cir : cirs) signals.emplace_back(*v.extractor, cir);
       std::vector<const methods::coop::LinkSignal*> pointers;

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "mirage/geometry/virtual_anchor.h"
+#include "mirage/methods/estimator.h"
 #include "mirage/methods/slam/slam_tracker.h"
 
 namespace mirage::pipeline {
@@ -31,6 +32,10 @@ struct MapScore {
 
 /// Scores `map` against the channel VAs with ids in visible_channel_ids, per anchor (a VA of
 /// anchor 1 never matches a true VA of anchor 2); cutoff_m is the OSPA cut-off c.
+/// The same for a method's map features: the scored features (MapFeature::scored) against the
+/// true VAs; `unscored` counts the other features that are no physical anchor.
+MapScore EvaluateMap(std::span<const methods::MapFeature> map, const geometry::VirtualAnchorSet& channel_vas,
+                     const std::set<int>& visible_channel_ids, double cutoff_m);
 MapScore EvaluateMap(std::span<const methods::slam::MapVa> map, const geometry::VirtualAnchorSet& channel_vas,
                      const std::set<int>& visible_channel_ids, double cutoff_m);
 

@@ -63,6 +63,7 @@ std::vector<std::string> Validate(const CoopOptions& o) {
   if (!(o.innovation_gate_sigma >= 0.0) || !std::isfinite(o.innovation_gate_sigma)) {
     problems.push_back("innovation_gate_sigma must be >= 0");
   }
+  if (!(o.antenna_spacing_m >= 0.0) || !std::isfinite(o.antenna_spacing_m)) problems.push_back("antenna_spacing_m must be >= 0");
   for (auto& p : estimation::Validate(o.variance)) problems.push_back("variance: " + p);
   return problems;
 }

@@ -75,6 +75,12 @@ struct CoopOptions {
   /// SINR and range variance per MPC (Sec. III-C): window up to 0.2 m of track, default and
   /// fallback sigma 0.07 m (R_0). window_min_m 0.1 m and min_samples 5 are our choices [GAP].
   estimation::RangeVarianceOptions variance = DefaultVariance();
+  /// Every agent also measures the channel from the world's first anchor (Sec. IV-D, the
+  /// "anchor" variants); off: no anchor at all, the paper's anchorless case.
+  bool anchor_links = false;
+  /// Distance between an agent's transmit and receive antennas (m), >= 0: they sit side by side
+  /// along x (coop_link.h). 5 cm, as on the paper's measurement trolley.
+  double antenna_spacing_m = 0.05;
 
   static estimation::RangeVarianceOptions DefaultVariance();
 };
@@ -112,7 +118,7 @@ struct CoopStepInfo {
 
 /// What the filter needs from one link's received signal in one step. Methods work on ranges, not
 /// on CIRs (STYLE.md Sec. 1): the pipeline implements this on a simulated or measured CIR with
-/// the MPC extractor (pipeline/cir_link_signal.h). The filter asks for the ranges only after it
+/// the MPC extractor (methods/coop/cir_link_signal.h). The filter asks for the ranges only after it
 /// knows how many paths it expects, and for amplitudes only after its update.
 class LinkSignal {
  public:

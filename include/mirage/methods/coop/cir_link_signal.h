@@ -11,10 +11,10 @@
 #include "mirage/dsp/mpc_extractor.h"
 #include "mirage/methods/coop/coop_tracker.h"
 
-namespace mirage::pipeline {
+namespace mirage::methods::coop {
 
 /// A CIR seen through an MPC extractor; keeps references to both (they must outlive it).
-class CirLinkSignal final : public methods::coop::LinkSignal {
+class CirLinkSignal final : public LinkSignal {
  public:
   CirLinkSignal(const dsp::MpcExtractor& extractor, const core::Cir& cir);
 
@@ -28,6 +28,6 @@ class CirLinkSignal final : public methods::coop::LinkSignal {
 };
 
 /// The filter's pulse facts of a transmit pulse.
-methods::coop::PulseFacts PulseFactsOf(const channel::RaisedCosinePulse& pulse);
+PulseFacts PulseFactsOf(const channel::RaisedCosinePulse& pulse);
 
-}  // namespace mirage::pipeline
+}  // namespace mirage::methods::coop

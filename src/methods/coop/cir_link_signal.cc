@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: MIT
-#include "mirage/pipeline/cir_link_signal.h"
+#include "mirage/methods/coop/cir_link_signal.h"
 
 #include <cmath>
 
 #include "mirage/core/constants.h"
 
-namespace mirage::pipeline {
+namespace mirage::methods::coop {
 
 CirLinkSignal::CirLinkSignal(const dsp::MpcExtractor& extractor, const core::Cir& cir)
     : extractor_(&extractor), start_s_(cir.start_s), matched_(extractor.MatchedFilter(cir)) {}
@@ -20,8 +20,8 @@ double CirLinkSignal::AmplitudeAt(double range_m) const {
   return std::abs(extractor_->ProjectAt(matched_, start_s_, range_m / core::kSpeedOfLight_mps));
 }
 
-methods::coop::PulseFacts PulseFactsOf(const channel::RaisedCosinePulse& pulse) {
+PulseFacts PulseFactsOf(const channel::RaisedCosinePulse& pulse) {
   return {pulse.options().duration_s, pulse.range_sigma_at_unit_sinr_m()};
 }
 
-}  // namespace mirage::pipeline
+}  // namespace mirage::methods::coop

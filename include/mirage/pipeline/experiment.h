@@ -1,0 +1,148 @@
+// SPDX-License-Identifier: MIT
+// Everything one experiment needs, for every method: the true world it is simulated in (floor
+// plan, anchors, trajectories, channel) or the recording it reads, what the estimator is told
+// (the plan it is given, with its errors), the method with its options, the Monte-Carlo runs and
+// the evaluation rule. Filled by io/ from a scenario file (docs/scenario.md); no YAML here.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "mirage/channel/cir_synthesizer.h"
+#include "mirage/channel/link.h"
+#include "mirage/channel/range_level_simulator.h"
+#include "mirage/channel/ranging_simulator.h"
+#include "mirage/core/medium.h"
+#include "mirage/core/types.h"
+#include "mirage/dsp/mpc_extractor.h"
+#include "mirage/eval/error_stats.h"
+#include "mirage/geometry/floor_plan.h"
+#include "mirage/methods/estimator.h"
+#include "mirage/methods/world.h"
+#include "mirage/pipeline/recording.h"
+
+namespace mirage::pipeline {
+
+/// A trajectory: waypoints walked at constant speed at a fixed height, sampled every dt_s.
+struct TrajectorySpec {
+  std::string name;               ///< label for reports; unique within a scenario
+  std::vector<Vec2> waypoints_m;  ///< at least two points (m)
+  double speed_mps = 0.5;         ///< walking speed (m/s), > 0; 5 cm per 0.1 s step (Lafer Sec. 3.7)
+  double dt_s = 0.1;              ///< time step (s), > 0 (Lafer Tab. 3.1)
+  double height_m = 0.0;          ///< the agent's height z (m)
+};
+
+/// Start offsets of the Monte-Carlo runs: run i is shifted by grid point i mod (nx * ny), the
+/// grid centred on the trajectory (Lafer 2014 Sec. 3.7: 5 x 5 points, 1 cm apart).
+struct RunGrid {
+  int nx = 5;               ///< points along x, >= 1
+  int ny = 5;               ///< points along y, >= 1
+  double spacing_m = 0.01;  ///< grid spacing (m), >= 0
+};
+
+/// Offset (m) of run `run` on the grid.
+Vec2 RunOffset(const RunGrid& grid, int run);
+
+/// A physical anchor.
+struct AnchorSpec {
+  std::string id;
+  Vec3 position_m = Vec3::Zero();
+};
+
+/// What the simulator produces (or that the data are recorded).
+enum class MeasurementModel {
+  kCir,         ///< sampled CIRs with diffuse multipath; range sets by MPC extraction
+  kRangeLevel,  ///< ranges drawn at each path's CRLB: missed detections, Poisson clutter
+  kRanging,     ///< one range per anchor at a fixed noise (a ranging system), 3-D
+  kRecorded,    ///< no simulation: the ranges of a recording (anchors.csv, ranges.csv, truth.csv)
+};
+
+/// The errors of the floor plan the estimator is given (Kulmer et al. Sec. IV-C2, IV-E). Walls of
+/// the true plan with in_plan false are missing from it altogether.
+struct PlanError {
+  /// Each given wall is shifted by a draw from U(-r/2, r/2) per coordinate, r this (m), >= 0;
+  /// a new draw per run.
+  double wall_shift_m = 0.0;
+  /// A wall moved along its normal by bias_m (index into the true plan's walls, -1 for none).
+  int biased_wall = -1;
+  double bias_m = 0.0;
+};
+
+/// The kind of input a method consumes.
+enum class MethodInput {
+  kRangeSets,  ///< unlabeled ranges per anchor (from MPC extraction, a ranging system or a file)
+  kLinkCirs,   ///< the CIR of every link the method names (methods that extract themselves)
+};
+
+/// A method bound to its options: what the runner needs to make its estimators.
+struct MethodSpec {
+  std::string name;
+  MethodInput input = MethodInput::kRangeSets;
+  /// One estimator tracks all walking agents at once (cooperative tracking); otherwise each
+  /// trajectory is run on its own.
+  bool joint = false;
+  /// A new estimator for one run.
+  std::function<std::unique_ptr<methods::Estimator>(const methods::World&)> create;
+  /// The links a kLinkCirs method measures.
+  std::function<std::vector<channel::LinkSpec>(const methods::World&)> links;
+  /// The method's effective options, as the report records them (set by io).
+  std::string options_json;
+};
+
+/// One experiment: a scenario (or one variant of its grid).
+struct Experiment {
+  std::string name;
+  std::uint64_t seed = 1;  ///< run i of trajectory group g uses Rng(seed, g * 1000003 + i)
+  int runs = 25;           ///< runs per trajectory (per grid variant for a joint method), >= 1
+  int threads = 0;         ///< worker threads, 0 = all cores; results do not depend on it
+  RunGrid run_grid;
+  core::Medium medium = core::Medium::Radio();
+
+  // The true world.
+  geometry::FloorPlan plan;            ///< as it reflects; may be empty
+  std::vector<bool> in_plan;           ///< per wall: whether the estimator's plan has it
+  std::vector<AnchorSpec> anchors;
+  std::vector<TrajectorySpec> trajectories;
+  /// Joint methods: the first `agents` trajectories walk together (0 = all), for `steps` steps
+  /// (0 = until the longest has ended; an agent at its end stays there).
+  int agents = 0;
+  int steps = 0;
+
+  // The measurements.
+  MeasurementModel measurement_model = MeasurementModel::kCir;
+  channel::ChannelOptions channel;
+  int channel_max_order = 2;           ///< highest reflection order simulated
+  /// Energy of an agent's own transmit-receive antenna coupling relative to a free-space path of
+  /// the antenna spacing (dB), for links with both ends on one agent.
+  double self_coupling_db = -20.0;
+  dsp::MpcExtractorOptions mpc;
+  channel::RangeLevelOptions range_level;
+  channel::RangingOptions ranging;
+  std::shared_ptr<const Recording> recording;  ///< kRecorded
+  double epoch_window_s = 0.0;                  ///< recorded data: the epoch rule's window
+
+  // What the estimator is told.
+  PlanError plan_error;
+  /// Where the estimator starts on recorded data without truth (m); empty: the truth at the first
+  /// epoch, or, without truth, self-initialisation from the first epochs.
+  std::optional<Vec3> start_m;
+  /// Start at a draw from N(true start, sigma_start^2 I) (the thesis starts at the true start
+  /// with that variance, Tab. 3.1) instead of at the true start.
+  bool perturb_initial_position = false;
+  double start_sigma_m = 0.1;
+
+  MethodSpec method;
+
+  // Evaluation.
+  eval::DivergenceRule divergence;
+  double map_cutoff_m = 0.5;  ///< OSPA cut-off of the map error (m)
+};
+
+/// Problems with the experiment beyond what the parser checks, empty if valid.
+std::vector<std::string> Validate(const Experiment& experiment);
+
+}  // namespace mirage::pipeline

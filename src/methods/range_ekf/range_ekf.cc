@@ -1,0 +1,166 @@
+// SPDX-License-Identifier: MIT
+#include "mirage/methods/range_ekf/range_ekf.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "mirage/estimation/ekf_update.h"
+#include "mirage/estimation/gates/chi2_gate.h"
+#include "mirage/estimation/init/position_fix.h"
+#include "mirage/estimation/meas/range_to_point.h"
+
+namespace mirage::methods::range_ekf {
+namespace {
+
+namespace blocks = estimation::blocks;
+
+const estimation::BlockType& PositionType(bool planar) { return planar ? blocks::kPosition : blocks::kPosition3; }
+const estimation::BlockType& VelocityType(bool planar) { return planar ? blocks::kVelocity : blocks::kVelocity3; }
+
+}  // namespace
+
+std::vector<std::string> Validate(const RangeEkfOptions& o) {
+  std::vector<std::string> problems;
+  const auto positive = [&](double v, const char* name, const char* unit) {
+    if (!(v > 0.0) || !std::isfinite(v)) problems.push_back(std::string(name) + " must be > 0 " + unit);
+  };
+  if (o.mode != "3d" && o.mode != "planar") problems.push_back("mode must be 3d or planar, got " + o.mode);
+  positive(o.range_sigma_m, "range_sigma_m", "m");
+  positive(o.initial_position_sigma_m, "initial_position_sigma_m", "m");
+  positive(o.initial_velocity_sigma_mps, "initial_velocity_sigma_mps", "m/s");
+  if (!(o.gate_chi2 >= 0.0) || !std::isfinite(o.gate_chi2)) problems.push_back("gate_chi2 must be >= 0");
+  for (const auto& p : estimation::Validate(o.motion)) problems.push_back("motion." + p);
+  return problems;
+}
+
+RangeEkf::RangeEkf(const RangeEkfOptions& options, const World& world)
+    : options_(options), world_(world), motion_(options.motion, options.mode == "planar" ? 2 : 3, 1) {
+  if (const auto problems = Validate(options_); !problems.empty()) throw std::invalid_argument("range_ekf: " + problems.front());
+  if (world_.anchors.empty()) throw std::invalid_argument("range_ekf: the scenario has no anchors");
+}
+
+double RangeEkf::AgentHeight() const { return world_.agent_height_m.value_or(0.0); }
+
+void RangeEkf::Start(double t_s, const Vec3& position_m, const Eigen::Matrix3d& position_covariance_m2) {
+  const int d = planar() ? 2 : 3;
+  estimation::StateLayout layout;
+  layout.Append(PositionType(planar()), 0);
+  layout.Append(VelocityType(planar()), 0);
+  Eigen::VectorXd mean = Eigen::VectorXd::Zero(2 * d);
+  mean.head(d) = position_m.head(d);
+  Eigen::MatrixXd P = Eigen::MatrixXd::Zero(2 * d, 2 * d);
+  P.topLeftCorner(d, d) = position_covariance_m2.topLeftCorner(d, d);
+  const double sv = options_.initial_velocity_sigma_mps;
+  P.bottomRightCorner(d, d) = sv * sv * Eigen::MatrixXd::Identity(d, d);
+  state_ = estimation::State(layout, mean, P, t_s);
+}
+
+void RangeEkf::Initialize(const Prior& prior) {
+  const double sp = options_.initial_position_sigma_m;
+  Start(prior.t_s, prior.positions_m.front(), sp * sp * Eigen::Matrix3d::Identity());
+}
+
+bool RangeEkf::InitializeFromEpoch(const core::Epoch& epoch) {
+  std::vector<Vec3> anchors_m;
+  std::vector<double> ranges_m;
+  for (const auto& set : epoch.range_sets) {
+    if (set.ranges.empty()) continue;
+    // The earliest range is the line of sight when it is not blocked.
+    const auto earliest = std::min_element(set.ranges.begin(), set.ranges.end(),
+                                           [](const auto& a, const auto& b) { return a.range_m < b.range_m; });
+    anchors_m.push_back(world_.anchors.at(static_cast<std::size_t>(set.anchor_index)).position_m);
+    ranges_m.push_back(earliest->range_m);
+  }
+  const auto fix = estimation::FixPosition(anchors_m, ranges_m, planar() ? std::optional(AgentHeight()) : std::nullopt,
+                                           options_.range_sigma_m);
+  if (!fix) return false;
+  Start(epoch.t_s, fix->position_m, fix->covariance_m2);
+  return true;
+}
+
+AgentEstimate RangeEkf::Estimate() const {
+  const int d = planar() ? 2 : 3;
+  const estimation::Block position = state_.layout().At(estimation::BlockKey(PositionType(planar()), 0));
+  AgentEstimate out;
+  out.position_m.head(d) = state_.mean().segment(position.mean_offset, d);
+  if (planar()) out.position_m.z() = AgentHeight();
+  out.covariance_m2.topLeftCorner(d, d) = state_.covariance().block(position.offset, position.offset, d, d);
+  return out;
+}
+
+StepOutput RangeEkf::Process(const core::Epoch& epoch) {
+  StepOutput out;
+  const estimation::Block position = state_.layout().At(estimation::BlockKey(PositionType(planar()), 0));
+  const double variance_m2 = options_.range_sigma_m * options_.range_sigma_m;
+  // Event-driven: the range sets are in time order; those with one time stamp update together.
+  std::size_t next = 0;
+  while (next < epoch.range_sets.size()) {
+    const double t_s = epoch.range_sets[next].t_s;
+    estimation::Propagate(state_, std::max(t_s, state_.t_s()), {&motion_});
+    std::vector<estimation::MeasurementRow> rows;
+    std::vector<double> innovations;
+    for (; next < epoch.range_sets.size() && epoch.range_sets[next].t_s == t_s; ++next) {
+      const core::RangeSet& set = epoch.range_sets[next];
+      const Vec3& anchor_m = world_.anchors.at(static_cast<std::size_t>(set.anchor_index)).position_m;
+      const auto row = estimation::RangeToPointRow(state_, position, anchor_m, AgentHeight(), variance_m2);
+      if (!row) continue;
+      // The anchor's range nearest to the prediction in innovation variances, if inside the gate.
+      const double s_m2 = estimation::InnovationVariance(state_, *row);
+      double best_nis = std::numeric_limits<double>::infinity();
+      double best_nu = 0.0;
+      for (const auto& r : set.ranges) {
+        const double nu = r.range_m - row->predicted;
+        if (nu * nu / s_m2 < best_nis) {
+          best_nis = nu * nu / s_m2;
+          best_nu = nu;
+        }
+      }
+      if (!std::isfinite(best_nis) || !estimation::InsideChi2Gate(best_nu, s_m2, options_.gate_chi2)) continue;
+      rows.push_back(*row);
+      innovations.push_back(best_nu);
+    }
+    if (!rows.empty()) {
+      const auto update = estimation::Update(state_, rows, innovations);
+      if (update.applied) out.associations += static_cast<int>(rows.size());
+      out.rejected_update = out.rejected_update || update.rejection == estimation::UpdateRejection::kNotPositiveDefinite;
+    }
+  }
+  if (epoch.range_sets.empty()) estimation::Propagate(state_, std::max(epoch.t_s, state_.t_s()), {&motion_});
+  out.agents.push_back(Estimate());
+  return out;
+}
+
+std::vector<std::vector<double>> RangeEkf::PosteriorBound(const BoundInput& truth) const {
+  if (truth.positions_m.empty()) return {};
+  const int d = planar() ? 2 : 3;
+  // The same start as a run with a known start point: the truth with the initial covariance.
+  RangeEkf model(options_, world_);
+  model.Initialize({truth.t_s.front(), {truth.positions_m.front().front()}});
+  estimation::State state = model.state_;
+  const estimation::Block position = state.layout().At(estimation::BlockKey(PositionType(planar()), 0));
+  const double variance_m2 = options_.range_sigma_m * options_.range_sigma_m;
+  std::vector<std::vector<double>> bound;
+  for (std::size_t k = 0; k < truth.positions_m.size(); ++k) {
+    if (k > 0) {
+      estimation::Propagate(state, truth.t_s[k], {&motion_});
+      // Linearise at the truth: the bound's Fisher information is evaluated on the true path.
+      Eigen::VectorXd at_truth = state.Mean(position.key);
+      at_truth = truth.positions_m[k].front().head(d);
+      state.SetMean(position.key, at_truth);
+      std::vector<estimation::MeasurementRow> rows;
+      for (const auto& anchor : world_.anchors) {
+        if (auto row = estimation::RangeToPointRow(state, position, anchor.position_m, AgentHeight(), variance_m2)) {
+          rows.push_back(*row);
+        }
+      }
+      const std::vector<double> zero(rows.size(), 0.0);
+      estimation::Update(state, rows, zero);
+    }
+    bound.push_back({std::sqrt(state.Covariance(position.key).trace())});
+  }
+  return bound;
+}
+
+}  // namespace mirage::methods::range_ekf
