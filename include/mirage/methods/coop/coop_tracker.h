@@ -34,6 +34,7 @@
 #include <utility>
 #include <vector>
 
+#include "mirage/core/medium.h"
 #include "mirage/core/types.h"
 #include "mirage/estimation/ekf_update.h"
 #include "mirage/estimation/motion/constant_velocity.h"
@@ -128,6 +129,7 @@ class LinkSignal {
 struct PulseFacts {
   double duration_s = 0.5e-9;               ///< T_p (s): d_c = c T_p
   double range_sigma_at_unit_sinr_m = 0.0;  ///< c / (sqrt(8) pi beta) (m), Eq. (15)
+  core::Medium medium;                      ///< carries the signal: c = medium.speed_mps (m/s)
 };
 
 /// The centralised cooperative EKF.
