@@ -13,7 +13,7 @@
 
 #include "mirage/core/constants.h"
 #include "mirage/geometry/floor_plan.h"
-#include "mirage/geometry/image_path.h"
+#include "mirage/geometry/image_source.h"
 #include "mirage/methods/coop/coop_tracker.h"
 
 namespace mirage::bench {

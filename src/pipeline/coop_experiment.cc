@@ -17,7 +17,7 @@
 #include "mirage/core/units.h"
 #include "mirage/estimation/ekf_update.h"
 #include "mirage/estimation/motion/constant_velocity.h"
-#include "mirage/geometry/image_path.h"
+#include "mirage/geometry/image_source.h"
 #include "mirage/geometry/trajectory.h"
 #include "mirage/pipeline/cir_link_signal.h"
 #include "mirage/pipeline/parallel_jobs.h"

@@ -131,16 +131,28 @@ TEST(ComputeSpecularPaths, OmitsPathsBlockedByAPillar) {
 }
 
 TEST(ComputeSpecularPaths, ClampsTheDistanceOfANearFieldPathTo1Centimetre) {
-  // Agent on the anchor: the LOS distance 0 is clamped to 0.01 m, |alpha| = 100.
+  // Agent 1 mm from the anchor: the LOS distance is clamped to 0.01 m, |alpha| = 100.
   const auto plan = SquareRoom();
   const std::vector<Vec2> anchors{kAnchor};
   const auto vas = geometry::VirtualAnchorSet::Generate(anchors, plan, 0);
 
-  const auto paths = ComputeSpecularPaths(vas, 0, plan, kAnchor, kCarrier_hz, core::Medium::Radio());
+  const auto paths = ComputeSpecularPaths(vas, 0, plan, kAnchor + Vec2(0.001, 0.0), kCarrier_hz, core::Medium::Radio());
 
   ASSERT_EQ(paths.size(), 1u);
   EXPECT_NEAR(std::abs(paths[0].amplitude), 100.0, 1e-10);
   EXPECT_NEAR(paths[0].delay_s, 0.01 / kSpeedOfLight_mps, 1e-22);
+}
+
+TEST(ComputeSpecularPaths, GivesAnAgentOnTopOfTheAnchorNoLineOfSight) {
+  // A zero-length path is outside every model here (image_source.h: kOnLineTolerance_m).
+  const auto plan = SquareRoom();
+  const std::vector<Vec2> anchors{kAnchor};
+  const auto vas = geometry::VirtualAnchorSet::Generate(anchors, plan, 1);
+
+  const auto paths = ComputeSpecularPaths(vas, 0, plan, kAnchor, kCarrier_hz, core::Medium::Radio());
+
+  ASSERT_EQ(paths.size(), 4u);
+  for (const auto& path : paths) EXPECT_EQ(path.order, 1);
 }
 
 TEST(ComputeSpecularPaths, ScalesThePhaseWithTheCarrier) {

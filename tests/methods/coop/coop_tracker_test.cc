@@ -13,7 +13,7 @@
 #include <gtest/gtest.h>
 
 #include "mirage/core/rng.h"
-#include "mirage/geometry/image_path.h"
+#include "mirage/geometry/image_source.h"
 
 namespace mirage::methods::coop {
 namespace {

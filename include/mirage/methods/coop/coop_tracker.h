@@ -40,7 +40,7 @@
 #include "mirage/estimation/motion/constant_velocity.h"
 #include "mirage/estimation/state.h"
 #include "mirage/geometry/floor_plan.h"
-#include "mirage/geometry/image_path.h"
+#include "mirage/geometry/image_source.h"
 #include "mirage/methods/coop/coop_link.h"
 #include "mirage/methods/mint/va_variance_estimator.h"
 
