@@ -402,13 +402,12 @@ TEST(TraceImagePath, RespectsFiniteWallsOcclusionAndObstacles) {
 }
 
 TEST(TraceImagePath, RejectsSequencesTheGenerationRulesExclude) {
-  // [0, 0] would return to tx; a south wall split in two collinear pieces gives no [0a, 0b].
-  const FloorPlan plan({{Vec2(0, 0), Vec2(2, 0), 0.9, "south a"},
-                        {Vec2(2, 0), Vec2(4, 0), 0.9, "south b"},
-                        {Vec2(4, 0), Vec2(4, 4), 0.8, "east"},
-                        {Vec2(4, 4), Vec2(0, 4), 0.5, "north"},
-                        {Vec2(0, 4), Vec2(0, 0), 0.3, "west"}},
-                       {});
+  // [0, 0] would return to tx; the south wall of a 4 m square split in two collinear pieces
+  // 0a = (0,0)-(2,0) and 0b = (2,0)-(4,0) gives no [0a, 0b].
+  auto walls = Rectangle(4.0, 4.0).walls();
+  walls[0].end_m = Vec2(2, 0);
+  walls.insert(walls.begin() + 1, Wall{Vec2(2, 0), Vec2(4, 0), 0.5, "south b"});
+  const FloorPlan plan(walls, {});
   EXPECT_FALSE(TraceImagePath(plan, WallSequence{0, 0}, Vec2(1, 1), Vec2(3, 2)).has_value());
   EXPECT_FALSE(TraceImagePath(plan, WallSequence{0, 1}, Vec2(1, 1), Vec2(3, 2)).has_value());
   // The single bounce reflects at x = 1 + 2 / 3 on piece 0a.

@@ -321,23 +321,30 @@ TEST(Visibility, AnInteriorWallStubBlocksOneReflectionAndReflectsItself) {
 // 3-D and degenerate cases
 // ---------------------------------------------------------------------------------------------
 
-TEST(Visibility, TracesGoldenReflectionHeightsIn3D) {
-  // Anchor at 2.5 m, agent (3,3) at 1.0 m. South wall: the reflection (5/3, 0) lies 2/3 along
-  // the unfolded path, at 1.0 + 2/3 * 1.5 = 2.0 m. {0,1}: (4, 1.875) at 1/4 and (7/3, 0) at 2/3
-  // of it (hand traced above): 1.375 m and 2.0 m. Lengths sqrt(24.25 + 2.25), sqrt(36.25 + 2.25).
-  const std::vector<Vec3> anchors{Vec3(1.0, 1.5, 2.5)};
-  const FloorPlan plan(SquareWalls(), {}, 0.0, 3.0);
-  const auto vas = VirtualAnchorSet::Generate(anchors, plan, 2);
-  const Vec3 agent(3.0, 3.0, 1.0);
+// The anchor and the agent of the golden values, at 2.5 m and 1.0 m.
+const Vec3 kTallAnchor(1.0, 1.5, 2.5);
+const Vec3 kSeatedAgent(3.0, 3.0, 1.0);
 
-  const auto south = TraceVirtualAnchor(vas, IdOf(vas, {0}), plan, agent);
-  const auto corner = TraceVirtualAnchor(vas, IdOf(vas, {0, 1}), plan, agent);
+VirtualAnchorSet GenerateTall(const FloorPlan& plan, int max_order) {
+  const std::vector<Vec3> anchors{kTallAnchor};
+  return VirtualAnchorSet::Generate(anchors, plan, max_order);
+}
+
+TEST(Visibility, TracesGoldenReflectionHeightsIn3D) {
+  // South wall: the reflection (5/3, 0) lies 2/3 along the unfolded path, at 1.0 + 2/3 * 1.5 =
+  // 2.0 m. {0,1}: (4, 1.875) at 1/4 and (7/3, 0) at 2/3 of it (hand traced above): 1.375 m and
+  // 2.0 m. Lengths sqrt(24.25 + 2.25), sqrt(36.25 + 2.25).
+  const FloorPlan plan(SquareWalls(), {}, 0.0, 3.0);
+  const auto vas = GenerateTall(plan, 2);
+
+  const auto south = TraceVirtualAnchor(vas, IdOf(vas, {0}), plan, kSeatedAgent);
+  const auto corner = TraceVirtualAnchor(vas, IdOf(vas, {0, 1}), plan, kSeatedAgent);
 
   ASSERT_TRUE(south.has_value());
   ASSERT_EQ(south->points_m.size(), 3u);
   EXPECT_NEAR((south->points_m[1] - Vec3(5.0 / 3.0, 0, 2.0)).norm(), 0.0, 1e-12);
-  EXPECT_EQ(south->points_m[0], agent);
-  EXPECT_EQ(south->points_m[2], anchors[0]);
+  EXPECT_EQ(south->points_m[0], kSeatedAgent);
+  EXPECT_EQ(south->points_m[2], kTallAnchor);
   EXPECT_NEAR(south->length_m, std::sqrt(26.5), 1e-12);
   ASSERT_TRUE(corner.has_value());
   ASSERT_EQ(corner->points_m.size(), 4u);
@@ -348,14 +355,12 @@ TEST(Visibility, TracesGoldenReflectionHeightsIn3D) {
 
 TEST(Visibility, HidesA3DReflectionAboveTheCeilingButNotTheLineOfSight) {
   // The same paths under a 1.9 m ceiling: both reach 2.0 m, the LOS has no reflection point.
-  const std::vector<Vec3> anchors{Vec3(1.0, 1.5, 2.5)};
   const FloorPlan low(SquareWalls(), {}, 0.0, 1.9);
-  const auto vas = VirtualAnchorSet::Generate(anchors, low, 2);
-  const Vec3 agent(3.0, 3.0, 1.0);
+  const auto vas = GenerateTall(low, 2);
 
-  EXPECT_FALSE(TraceVirtualAnchor(vas, IdOf(vas, {0}), low, agent).has_value());
-  EXPECT_FALSE(TraceVirtualAnchor(vas, IdOf(vas, {0, 1}), low, agent).has_value());
-  EXPECT_TRUE(TraceVirtualAnchor(vas, 0, low, agent).has_value());
+  EXPECT_FALSE(TraceVirtualAnchor(vas, IdOf(vas, {0}), low, kSeatedAgent).has_value());
+  EXPECT_FALSE(TraceVirtualAnchor(vas, IdOf(vas, {0, 1}), low, kSeatedAgent).has_value());
+  EXPECT_TRUE(TraceVirtualAnchor(vas, 0, low, kSeatedAgent).has_value());
   // The planar trace knows no heights.
   EXPECT_TRUE(IsVisible(vas, IdOf(vas, {0}), low, Vec2(3.0, 3.0)));
 }
@@ -363,8 +368,7 @@ TEST(Visibility, HidesA3DReflectionAboveTheCeilingButNotTheLineOfSight) {
 TEST(Visibility, Agrees3DWith2DOnWhichVasAreVisibleAndWhere) {
   // With no ceiling, 3-D visibility is planar visibility; the points project onto the 2-D ones.
   const FloorPlan plan(SquareWalls(), {{Vec2(2.0, 2.25), 0.4, "pillar"}});
-  const std::vector<Vec3> anchors{Vec3(1.0, 1.5, 2.2)};
-  const auto vas = VirtualAnchorSet::Generate(anchors, plan, 3);
+  const auto vas = GenerateTall(plan, 3);
   for (const Vec2& agent : {kAgent, Vec2(2.0, 0.2), Vec2(3.5, 1.5), Vec2(0.4, 3.6)}) {
     for (int id = 0; id < vas.size(); ++id) {
       const auto flat = TraceVirtualAnchor(vas, id, plan, agent);
