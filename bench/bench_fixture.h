@@ -42,7 +42,8 @@ inline const SeminarRoomData& SeminarRoom() {
     for (const auto& s : d.samples) {
       std::vector<core::Cir> per_anchor;
       for (int a = 0; a < static_cast<int>(config.anchors_m.size()); ++a) {
-        const auto paths = channel::ComputeSpecularPaths(d.vas, a, config.plan, s.position_m, config.channel.pulse.carrier_hz);
+        const auto paths = channel::ComputeSpecularPaths(d.vas, a, config.plan, s.position_m, config.channel.pulse.carrier_hz,
+                                                         config.channel.medium);
         const double los_m = (s.position_m - config.anchors_m[static_cast<std::size_t>(a)]).norm();
         per_anchor.push_back(d.synthesizer->Synthesize(paths, los_m, diffuse, noise).cir);
       }

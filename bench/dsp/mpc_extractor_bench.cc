@@ -13,7 +13,7 @@ void BM_MpcExtract(benchmark::State& state) {
   auto options = d.scenario.mint.mpc;
   options.readjust = state.range(0) != 0;
   const dsp::MpcExtractor extractor(options, d.synthesizer->pulse(), d.synthesizer->sample_count(),
-                                    d.scenario.mint.channel.sample_period_s);
+                                    d.scenario.mint.channel.sample_period_s, d.scenario.mint.channel.medium);
   std::size_t k = 0;
   for (auto _ : state) {
     benchmark::DoNotOptimize(extractor.Extract(d.cirs[k % d.cirs.size()][k % 2]));
@@ -26,7 +26,7 @@ BENCHMARK(BM_MpcExtract)->Arg(1)->Arg(0)->ArgName("readjust")->Unit(benchmark::k
 void BM_MatchedFilter(benchmark::State& state) {
   const auto& d = SeminarRoom();
   const dsp::MpcExtractor extractor(d.scenario.mint.mpc, d.synthesizer->pulse(), d.synthesizer->sample_count(),
-                                    d.scenario.mint.channel.sample_period_s);
+                                    d.scenario.mint.channel.sample_period_s, d.scenario.mint.channel.medium);
   for (auto _ : state) benchmark::DoNotOptimize(extractor.MatchedFilter(d.cirs[0][0]));
 }
 BENCHMARK(BM_MatchedFilter)->Unit(benchmark::kMicrosecond);

@@ -13,7 +13,7 @@
 
 #include "mirage/core/constants.h"
 #include "mirage/geometry/floor_plan.h"
-#include "mirage/geometry/image_path.h"
+#include "mirage/geometry/image_source.h"
 #include "mirage/methods/coop/coop_tracker.h"
 
 namespace mirage::bench {
@@ -71,7 +71,7 @@ void BM_CoopStepTwoAgents(benchmark::State& state) {
     }
   }
   methods::coop::CoopTracker tracker(methods::coop::CoopOptions{}, plan, links, antennas, std::nullopt,
-                                     methods::coop::PulseFacts{0.5e-9, 0.063});
+                                     methods::coop::PulseFacts{0.5e-9, 0.063, core::Medium{}});
   tracker.Initialize(truth.front(), 0.0);
   int n = 0;
   int rows = 0;

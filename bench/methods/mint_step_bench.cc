@@ -14,8 +14,8 @@ void RunSteps(benchmark::State& state, const methods::mint::MintOptions& mint, c
   const auto& d = SeminarRoom();
   const auto& config = d.scenario.mint;
   const dsp::MpcExtractor extractor(mpc, d.synthesizer->pulse(), d.synthesizer->sample_count(),
-                                    config.channel.sample_period_s);
-  const double sigma1 = d.synthesizer->pulse().range_sigma_at_unit_sinr_m();
+                                    config.channel.sample_period_s, config.channel.medium);
+  const double sigma1 = d.synthesizer->pulse().range_sigma_at_unit_sinr_m(d.synthesizer->options().medium.speed_mps);
   const int anchors = static_cast<int>(config.anchors_m.size());
   methods::mint::MintTracker tracker(mint, d.vas, config.plan, sigma1);
   std::size_t step = 0;

@@ -34,6 +34,9 @@ std::vector<std::string> Validate(const ChannelOptions& options) {
   std::vector<std::string> problems;
   for (const auto& p : Validate(options.pulse)) problems.push_back("pulse." + p);
   for (const auto& p : Validate(options.diffuse)) problems.push_back("diffuse." + p);
+  if (!(options.medium.speed_mps > 0.0) || !std::isfinite(options.medium.speed_mps)) {
+    problems.push_back("medium.speed_mps must be > 0 m/s");
+  }
   if (!(options.sample_period_s > 0.0) || !std::isfinite(options.sample_period_s)) {
     problems.push_back("sample_period_s must be > 0 s");
   } else if (problems.empty()) {
@@ -74,7 +77,7 @@ CirSynthesizer::CirSynthesizer(const ChannelOptions& options)
 
 double CirSynthesizer::DiffusePdp(double delay_s, double los_distance_m) const {
   if (!options_.diffuse.enabled) return 0.0;
-  const double los_delay_s = los_distance_m / core::kSpeedOfLight_mps;
+  const double los_delay_s = los_distance_m / options_.medium.speed_mps;
   // Total DM energy Omega_1 scales with the free-space LOS energy (1 m / d_LOS)^2.
   const double omega = core::DbToPowerRatio(options_.diffuse.power_ratio_db) / (los_distance_m * los_distance_m);
   return omega * DiffusePdpShape(options_.diffuse, delay_s - los_delay_s);
@@ -126,7 +129,7 @@ SynthesizedCir CirSynthesizer::Synthesize(std::span<const SpecularPath> paths, d
   if (options_.diffuse.enabled) {
     std::vector<Complex> nu(m, Complex(0.0, 0.0));
     const std::size_t last = static_cast<std::size_t>(sample_count_ + guard_samples_);
-    const double los_delay_s = los_distance_m / core::kSpeedOfLight_mps;
+    const double los_delay_s = los_distance_m / options_.medium.speed_mps;
     const double omega_ts = core::DbToPowerRatio(options_.diffuse.power_ratio_db) / (los_distance_m * los_distance_m) * ts;
     for (std::size_t j = 0; j < last; ++j) {
       const double excess_s = start_s + static_cast<double>(j) * ts - los_delay_s;

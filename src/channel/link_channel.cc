@@ -7,7 +7,7 @@
 
 #include "mirage/core/constants.h"
 #include "mirage/core/units.h"
-#include "mirage/geometry/image_path.h"
+#include "mirage/geometry/image_source.h"
 
 namespace mirage::channel {
 

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "mirage/channel/raised_cosine_pulse.h"
 
+#include <cassert>
 #include <cmath>
 
 #include "mirage/core/constants.h"
@@ -134,8 +135,9 @@ double RaisedCosinePulse::Autocorrelation(double tau_s) const {
   return (1.0 - frac) * autocorrelation_table_[i] + frac * autocorrelation_table_[i + 1];
 }
 
-double RaisedCosinePulse::range_sigma_at_unit_sinr_m() const {
-  return core::kSpeedOfLight_mps / (std::sqrt(8.0) * core::kPi * rms_bandwidth_hz_);
+double RaisedCosinePulse::range_sigma_at_unit_sinr_m(double speed_mps) const {
+  assert(speed_mps > 0.0);
+  return speed_mps / (std::sqrt(8.0) * core::kPi * rms_bandwidth_hz_);
 }
 
 }  // namespace mirage::channel

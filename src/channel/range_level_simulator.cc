@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "mirage/core/constants.h"
 #include "mirage/core/units.h"
 
 namespace mirage::channel {
@@ -32,7 +31,7 @@ core::AnchorRanges RangeLevelSimulator::Simulate(int anchor_index, std::span<con
   const auto& channel = synthesizer_->options();
   const double window_begin_s = channel.window_start_s;
   const double window_end_s = channel.window_start_s + channel.window_length_s;
-  const double sigma1_m = synthesizer_->pulse().range_sigma_at_unit_sinr_m();
+  const double sigma1_m = synthesizer_->pulse().range_sigma_at_unit_sinr_m(channel.medium.speed_mps);
   const double min_sinr = core::DbToPowerRatio(options_.min_sinr_db);
   if (truth != nullptr) truth->clear();
 
@@ -55,7 +54,7 @@ core::AnchorRanges RangeLevelSimulator::Simulate(int anchor_index, std::span<con
     if (!detected || !(sinr >= min_sinr)) continue;
     // CRLB range std (Lafer Eq. 3.28), capped; amplitude Rician with K = SINR (Eq. 3.25).
     const double sigma_m = std::min(sigma1_m / std::sqrt(sinr), options_.max_range_sigma_m);
-    const double range_m = path.delay_s * core::kSpeedOfLight_mps;
+    const double range_m = path.delay_s * channel.medium.speed_mps;
     const Complex amplitude = path.amplitude + amplitude_noise * (std::abs(path.amplitude) / std::sqrt(sinr));
     detections.push_back({range_m, range_m + sigma_m * range_noise, amplitude, sinr});
   }
@@ -87,7 +86,7 @@ core::AnchorRanges RangeLevelSimulator::Simulate(int anchor_index, std::span<con
     const double delay_s = rng.Uniform(window_begin_s, window_end_s);
     const double interference = synthesizer_->noise_psd() +
                                 synthesizer_->pulse().effective_duration_s() * synthesizer_->DiffusePdp(delay_s, los_distance_m);
-    out.ranges.push_back({delay_s * core::kSpeedOfLight_mps, std::abs(rng.ComplexNormal(interference))});
+    out.ranges.push_back({delay_s * channel.medium.speed_mps, std::abs(rng.ComplexNormal(interference))});
   }
   std::sort(out.ranges.begin(), out.ranges.end(),
             [](const core::RangeMeasurement& a, const core::RangeMeasurement& b) { return a.range_m < b.range_m; });

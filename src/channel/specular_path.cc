@@ -11,7 +11,7 @@ namespace mirage::channel {
 
 std::vector<SpecularPath> ComputeSpecularPaths(const geometry::VirtualAnchorSet& vas, int anchor_index,
                                                const geometry::FloorPlan& plan, const Vec2& agent_m,
-                                               double carrier_hz) {
+                                               double carrier_hz, const core::Medium& medium) {
   std::vector<SpecularPath> paths;
   for (const int id : geometry::VisibleVirtualAnchors(vas, anchor_index, plan, agent_m)) {
     const auto& va = vas[id];
@@ -20,7 +20,7 @@ std::vector<SpecularPath> ComputeSpecularPaths(const geometry::VirtualAnchorSet&
     SpecularPath path;
     path.va_id = id;
     path.order = va.order;
-    path.delay_s = distance_m / core::kSpeedOfLight_mps;
+    path.delay_s = distance_m / medium.speed_mps;
     path.amplitude = va.reflection_gain / distance_m * std::polar(1.0, -2.0 * core::kPi * carrier_hz * path.delay_s);
     paths.push_back(path);
   }

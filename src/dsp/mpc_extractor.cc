@@ -5,7 +5,6 @@
 #include <cassert>
 #include <cmath>
 
-#include "mirage/core/constants.h"
 #include "mirage/core/units.h"
 
 namespace mirage::dsp {
@@ -41,17 +40,18 @@ std::vector<std::string> Validate(const MpcExtractorOptions& options) {
 }
 
 MpcExtractor::MpcExtractor(const MpcExtractorOptions& options, const channel::RaisedCosinePulse& pulse,
-                           int sample_count, double sample_period_s)
+                           int sample_count, double sample_period_s, const core::Medium& medium)
     : options_(options),
       pulse_(pulse),
       sample_count_(sample_count),
       sample_period_s_(sample_period_s),
+      medium_(medium),
       threshold_ratio_(core::DbToPowerRatio(options.relative_threshold_db)),
       support_samples_(SupportSamples(pulse, sample_period_s)),
       // Zero padding by the pulse's tail length keeps the circular correlation from wrapping.
       fft_(core::NextFastFftSize(
           static_cast<std::size_t>(sample_count + channel::PulseTailSamples(pulse.options(), sample_period_s)))) {
-  assert(sample_count > 0);
+  assert(sample_count > 0 && medium.speed_mps > 0.0);
   autocorrelation_.resize(static_cast<std::size_t>((support_samples_ + 2) * kTableOversampling));
   for (std::size_t i = 0; i < autocorrelation_.size(); ++i) {
     autocorrelation_[i] = pulse_.Autocorrelation(static_cast<double>(i) * sample_period_s_ / kTableOversampling);
@@ -210,7 +210,7 @@ std::vector<Mpc> MpcExtractor::ExtractFromMatchedFilter(std::vector<Complex> mat
   for (const auto& c : found) {
     Mpc mpc;
     mpc.delay_s = start_s + c.offset_samples * sample_period_s_;
-    mpc.range_m = mpc.delay_s * core::kSpeedOfLight_mps;
+    mpc.range_m = mpc.delay_s * medium_.speed_mps;
     mpc.amplitude = c.amplitude;
     mpcs.push_back(mpc);
   }

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "mirage/geometry/floor_plan.h"
 
+#include <cassert>
 #include <cmath>
 #include <limits>
 #include <utility>
@@ -10,8 +11,11 @@
 
 namespace mirage::geometry {
 
-FloorPlan::FloorPlan(std::vector<Wall> walls, std::vector<CircleObstacle> obstacles)
-    : walls_(std::move(walls)), obstacles_(std::move(obstacles)) {}
+FloorPlan::FloorPlan(std::vector<Wall> walls, std::vector<CircleObstacle> obstacles, double floor_z_m,
+                     double ceiling_z_m)
+    : walls_(std::move(walls)), obstacles_(std::move(obstacles)), floor_z_m_(floor_z_m), ceiling_z_m_(ceiling_z_m) {
+  assert(std::isfinite(floor_z_m) && ceiling_z_m > floor_z_m);
+}
 
 bool FloorPlan::IsLegClear(const Vec2& a, const Vec2& b, int skip_wall_a, int skip_wall_b) const {
   const double length_m = (b - a).norm();

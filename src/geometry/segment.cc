@@ -41,11 +41,14 @@ std::optional<std::array<Vec2, 2>> IntersectCircles(const Vec2& c1, double r1, c
   return std::array<Vec2, 2>{mid + h * n, mid - h * n};
 }
 
-Vec2 MirrorPoint(const Vec2& x, const Vec2& a, const Vec2& b) {
+Vec2 LineNormal(const Vec2& a, const Vec2& b) {
   const Vec2 d = (b - a).normalized();
-  const Vec2 n(-d.y(), d.x());
-  return x - 2.0 * (x - a).dot(n) * n;
+  return Vec2(-d.y(), d.x());
 }
+
+Vec2 MirrorAtLine(const Vec2& x, const Vec2& point_m, const Vec2& n) { return x - 2.0 * (x - point_m).dot(n) * n; }
+
+Vec2 MirrorPoint(const Vec2& x, const Vec2& a, const Vec2& b) { return MirrorAtLine(x, a, LineNormal(a, b)); }
 
 double SignedDistanceToLine(const Vec2& x, const Vec2& a, const Vec2& b) {
   const Vec2 d = (b - a).normalized();

@@ -2,68 +2,62 @@
 #include "mirage/geometry/visibility.h"
 
 #include <array>
-#include <cassert>
+#include <span>
 
-#include "mirage/geometry/segment.h"
+#include "mirage/geometry/image_source.h"
 
 namespace mirage::geometry {
 namespace {
 
-// Traces the path; when points is non-null, records the agent, the reflection points and the
-// anchor. All wall crossings are tested before any obstruction test because the crossing tests
-// are cheap and reject most VAs.
-bool Trace(const VirtualAnchorSet& vas, int va_id, const FloorPlan& plan, const Vec2& agent_m,
-           std::vector<Vec2>* points) {
-  const auto& walls = plan.walls();
-  const VirtualAnchor& target = vas[va_id];
-  const int order = target.order;
-  assert(order <= kMaxVirtualAnchorOrder);
-  // legs[i] starts at leg_start[i]; leg 0 starts at the agent, leg `order` ends at the anchor.
-  std::array<Vec2, kMaxVirtualAnchorOrder + 2> vertex;
-  std::array<int, kMaxVirtualAnchorOrder + 2> vertex_wall;
-  vertex[0] = agent_m;
-  vertex_wall[0] = -1;
-  const VirtualAnchor* va = &target;
-  for (int i = 1; i <= order; ++i) {
-    const int w = va->walls.back();
-    const Wall& wall = walls[static_cast<std::size_t>(w)];
-    const Vec2& from = vertex[static_cast<std::size_t>(i - 1)];
-    const auto crossing = CrossSegments(from, va->position_m, wall.start_m, wall.end_m);
-    if (!crossing || crossing->t <= 1e-12) return false;
-    vertex[static_cast<std::size_t>(i)] = from + crossing->t * (va->position_m - from);
-    vertex_wall[static_cast<std::size_t>(i)] = w;
-    va = &vas[va->parent];
-  }
-  vertex[static_cast<std::size_t>(order + 1)] = va->position_m;
-  vertex_wall[static_cast<std::size_t>(order + 1)] = -1;
-  for (int i = 0; i <= order; ++i) {
-    const auto a = static_cast<std::size_t>(i);
-    if (!plan.IsLegClear(vertex[a], vertex[a + 1], vertex_wall[a], vertex_wall[a + 1])) return false;
-  }
-  if (points != nullptr) points->assign(vertex.begin(), vertex.begin() + order + 2);
-  return true;
+using Vertices = std::array<Vec2, kMaxImageOrder + 2>;
+
+bool Trace(const VirtualAnchorSet& vas, int va_id, const FloorPlan& plan, const Vec2& agent_m, Vertices& vertices) {
+  const auto chain = vas.ImageChainOf(va_id);
+  return TraceImageChain(plan, vas[va_id].walls, chain, agent_m, std::span<Vec2>(vertices.data(), chain.size() + 1));
 }
 
 }  // namespace
 
 std::optional<ReflectionPath> TraceVirtualAnchor(const VirtualAnchorSet& vas, int va_id, const FloorPlan& plan,
                                                  const Vec2& agent_m) {
+  Vertices vertices;
+  if (!Trace(vas, va_id, plan, agent_m, vertices)) return std::nullopt;
   ReflectionPath path;
-  if (!Trace(vas, va_id, plan, agent_m, &path.points_m)) return std::nullopt;
+  // The engine's back-trace order is already agent, w_k .. w_1, anchor.
+  path.points_m.assign(vertices.begin(), vertices.begin() + vas[va_id].order + 2);
   path.length_m = (vas[va_id].position_m - agent_m).norm();
   return path;
 }
 
+std::optional<ReflectionPath3> TraceVirtualAnchor(const VirtualAnchorSet& vas, int va_id, const FloorPlan& plan,
+                                                  const Vec3& agent_m) {
+  const VirtualAnchor& va = vas[va_id];
+  const auto chain = vas.ImageChainOf(va_id);
+  std::array<Vec3, kMaxImageOrder + 1> images;
+  for (std::size_t k = 0; k < chain.size(); ++k) images[k] = Vec3(chain[k].x(), chain[k].y(), va.height_m);
+  std::array<Vec3, kMaxImageOrder + 2> vertices;
+  if (!TraceImageChain(plan, va.walls, std::span<const Vec3>(images.data(), chain.size()), agent_m,
+                       std::span<Vec3>(vertices.data(), chain.size() + 1))) {
+    return std::nullopt;
+  }
+  ReflectionPath3 path;
+  path.points_m.assign(vertices.begin(), vertices.begin() + static_cast<std::ptrdiff_t>(chain.size() + 1));
+  path.length_m = (va.position3_m() - agent_m).norm();
+  return path;
+}
+
 bool IsVisible(const VirtualAnchorSet& vas, int va_id, const FloorPlan& plan, const Vec2& agent_m) {
-  return Trace(vas, va_id, plan, agent_m, nullptr);
+  Vertices vertices;
+  return Trace(vas, va_id, plan, agent_m, vertices);
 }
 
 std::vector<int> VisibleVirtualAnchors(const VirtualAnchorSet& vas, int anchor_index, const FloorPlan& plan,
                                        const Vec2& agent_m, int max_order) {
   std::vector<int> visible;
+  Vertices vertices;
   for (const int id : vas.ForAnchor(anchor_index)) {
     if (vas[id].order > max_order) break;  // an anchor's VAs are sorted by order
-    if (Trace(vas, id, plan, agent_m, nullptr)) visible.push_back(id);
+    if (Trace(vas, id, plan, agent_m, vertices)) visible.push_back(id);
   }
   return visible;
 }

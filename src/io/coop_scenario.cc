@@ -13,7 +13,6 @@
 
 #include <fmt/format.h>
 
-#include "mirage/core/constants.h"
 #include "mirage/geometry/trajectory.h"
 #include "mirage/io/scenario_sections.h"
 #include "mirage/io/yaml_reader.h"
@@ -168,12 +167,12 @@ void ReadCoopChannel(YamlMap& m, CoopExperimentConfig& config) {
   // starts at 0 s, so its length must reach that far.
   const auto [lo_m, hi_m] = config.true_plan.Bounds();
   const double needed_m = 2.0 * (hi_m - lo_m).norm();
-  if (o.window_length_s * core::kSpeedOfLight_mps < needed_m) {
+  if (o.window_length_s * o.medium.speed_mps < needed_m) {
     m.Fail("window_length_s",
            fmt::format("{} s ({:.4g} m) does not cover the longest paths of interest: it must reach twice the "
                        "diagonal of the floor plan's bounding box, {:.4g} m = {:.6g} s",
-                       FormatValue(o.window_length_s), o.window_length_s * core::kSpeedOfLight_mps, needed_m,
-                       needed_m / core::kSpeedOfLight_mps));
+                       FormatValue(o.window_length_s), o.window_length_s * o.medium.speed_mps, needed_m,
+                       needed_m / o.medium.speed_mps));
   }
 }
 

@@ -6,7 +6,6 @@
 
 #include <fmt/format.h>
 
-#include "mirage/core/constants.h"
 #include "mirage/io/output_file.h"
 #include "mirage/pipeline/tracker_adapter.h"
 
@@ -247,7 +246,7 @@ std::vector<std::string> WriteCsv(const std::string& dir, const Scenario& scenar
       for (const auto& p : run.paths) {
         out << fmt::format("{},{},{},{},{},{},{:.6e},{:.5f},{:.6e},{:.6e},{:.2f},{}\n", name, run.run, p.step,
                            config.anchor_ids[static_cast<std::size_t>(p.anchor)], p.va_id, p.order, p.delay_s,
-                           p.delay_s * core::kSpeedOfLight_mps, p.amplitude.real(), p.amplitude.imag(),
+                           p.delay_s * config.channel.medium.speed_mps, p.amplitude.real(), p.amplitude.imag(),
                            p.true_sinr_db, p.estimated_sinr_db ? fmt::format("{:.2f}", *p.estimated_sinr_db) : "");
       }
     }

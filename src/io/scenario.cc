@@ -9,7 +9,6 @@
 
 #include <fmt/format.h>
 
-#include "mirage/core/constants.h"
 #include "mirage/geometry/segment.h"
 #include "mirage/geometry/trajectory.h"
 #include "mirage/io/scenario_sections.h"
@@ -47,11 +46,11 @@ void CheckWindowCoversLos(YamlMap& m, const pipeline::MintExperimentConfig& conf
     }
   }
   const auto& o = config.channel;
-  if (o.window_start_s > min_m / core::kSpeedOfLight_mps) {
+  if (o.window_start_s > min_m / o.medium.speed_mps) {
     m.Fail("window_start_s", fmt::format("{} s starts after the earliest LOS delay along the trajectories ({:.6g} s)",
-                                         FormatValue(o.window_start_s), min_m / core::kSpeedOfLight_mps));
+                                         FormatValue(o.window_start_s), min_m / o.medium.speed_mps));
   }
-  const double needed_s = max_m / core::kSpeedOfLight_mps + 8.0 * o.pulse.duration_s;
+  const double needed_s = max_m / o.medium.speed_mps + 8.0 * o.pulse.duration_s;
   if (o.window_start_s + o.window_length_s < needed_s) {
     m.Fail("window_length_s", fmt::format("the window ends at {:.6g} s, before the latest LOS delay along the "
                                           "trajectories plus 8 pulse durations ({:.6g} s)",

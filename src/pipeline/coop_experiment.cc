@@ -18,7 +18,7 @@
 #include "mirage/estimation/ekf_update.h"
 #include "mirage/estimation/measurement_row.h"
 #include "mirage/estimation/motion/constant_velocity.h"
-#include "mirage/geometry/image_path.h"
+#include "mirage/geometry/image_source.h"
 #include "mirage/geometry/trajectory.h"
 #include "mirage/methods/coop/cir_link_signal.h"
 #include "mirage/pipeline/parallel_jobs.h"
@@ -122,7 +122,7 @@ LinkChannel SimulateLink(const CoopExperimentConfig& config, const Link& link, c
     channel::SpecularPath path;
     path.va_id = static_cast<int>(i);
     path.order = static_cast<int>(walls.size());
-    path.delay_s = length_m / core::kSpeedOfLight_mps;
+    path.delay_s = length_m / config.channel.medium.speed_mps;
     // Free-space amplitude (1 m reference), reflection losses and the carrier phase.
     path.amplitude = gain / length_m * std::polar(1.0, -2.0 * core::kPi * carrier_hz * path.delay_s);
     out.paths.push_back(path);
@@ -149,12 +149,12 @@ std::vector<std::vector<double>> PositionErrorBound(const CoopExperimentConfig& 
   options.wall_sigma_m = v.variant.wall_sigma_m;
   methods::coop::CoopTracker model(options, plan, v.links, config.antennas,
                                    config.anchor ? std::optional<Vec2>(config.anchor->position_m) : std::nullopt,
-                                   methods::coop::PulseFactsOf(v.synthesizer->pulse()));
+                                   methods::coop::PulseFactsOf(v.synthesizer->pulse(), v.channel.medium));
   const int agents = v.variant.agents;
   const std::vector<Vec2> start = AgentsAt(truth, agents, 0);
   model.Initialize(start, 0.0);
   estimation::State state = model.state();
-  const double sigma1_m = v.synthesizer->pulse().range_sigma_at_unit_sinr_m();
+  const double sigma1_m = v.synthesizer->pulse().range_sigma_at_unit_sinr_m(v.channel.medium.speed_mps);
   const Vec2 anchor_m = config.anchor ? config.anchor->position_m : Vec2::Zero();
   std::vector<std::vector<double>> peb(static_cast<std::size_t>(config.steps) + 1);
   for (int step = 0; step <= config.steps; ++step) {
@@ -170,7 +170,7 @@ std::vector<std::vector<double>> PositionErrorBound(const CoopExperimentConfig& 
           const double length_m = path.range_m();
           double gain = 1.0;
           for (const int s : path.walls) gain *= plan.walls()[static_cast<std::size_t>(s)].reflection_coeff;
-          const double sinr = v.synthesizer->TrueSinr(Complex(gain / length_m, 0.0), length_m / core::kSpeedOfLight_mps,
+          const double sinr = v.synthesizer->TrueSinr(Complex(gain / length_m, 0.0), length_m / v.channel.medium.speed_mps,
                                                       link_channel.dm_reference_m);
           // The model's layout is the layout of `state` (a copy of its initial state).
           rows.push_back(model.JacobianRow(v.links[l], path, sigma1_m * sigma1_m / std::max(sinr, 1e-12)));
@@ -200,7 +200,7 @@ CoopRun RunOne(const CoopExperimentConfig& config, const VariantContext& v,
   const Vec2 anchor_m = config.anchor ? config.anchor->position_m : Vec2::Zero();
   methods::coop::CoopTracker tracker(options, provided.plan, v.links, config.antennas,
                                      v.variant.anchor ? std::optional<Vec2>(anchor_m) : std::nullopt,
-                                     methods::coop::PulseFactsOf(v.synthesizer->pulse()));
+                                     methods::coop::PulseFactsOf(v.synthesizer->pulse(), v.channel.medium));
   const int agents = v.variant.agents;
   tracker.Initialize(AgentsAt(truth, agents, 0), 0.0);
   // Per link, noise and DM streams named after the link, so that a link sees the same draws in
@@ -334,7 +334,7 @@ CoopExperimentResult RunCoopExperiment(const CoopExperimentConfig& config, const
     v.channel.pulse.duration_s = variant.pulse_duration_s;
     v.synthesizer = std::make_unique<channel::CirSynthesizer>(v.channel);
     v.extractor = std::make_unique<dsp::MpcExtractor>(config.mpc, v.synthesizer->pulse(), v.synthesizer->sample_count(),
-                                                      v.channel.sample_period_s);
+                                                      v.channel.sample_period_s, v.channel.medium);
     v.links = methods::coop::EnumerateLinks(variant.agents, variant.anchor);
     contexts.push_back(std::move(v));
   }

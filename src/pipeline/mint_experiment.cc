@@ -67,7 +67,7 @@ RunRecord RunOne(const Shared& shared, int trajectory, int run) {
   record.run = run;
   record.offset_m = simulator.offset_m();
 
-  const double sigma1_m = shared.simulation.synthesizer->pulse().range_sigma_at_unit_sinr_m();
+  const double sigma1_m = shared.simulation.synthesizer->pulse().range_sigma_at_unit_sinr_m(config.channel.medium.speed_mps);
   TrackerAdapter tracker(config, shared.known_vas, sigma1_m);
   // The thesis starts at the known start point with variance sigma_i^2 (Tab. 3.1); optionally
   // the start is drawn from that distribution instead, with the sigma_i of the method that runs.
@@ -136,7 +136,7 @@ RunRecord RunRecorded(const Shared& shared) {
   const MintExperimentConfig& config = *shared.simulation.config;
   const Recording& recording = *config.recording;
   RunRecord record;
-  const double sigma1_m = shared.simulation.synthesizer->pulse().range_sigma_at_unit_sinr_m();
+  const double sigma1_m = shared.simulation.synthesizer->pulse().range_sigma_at_unit_sinr_m(config.channel.medium.speed_mps);
   TrackerAdapter tracker(config, shared.known_vas, sigma1_m);
   const double t0_s = recording.steps.front().t_s;
   const std::optional<Vec2> start_m = config.start_m ? config.start_m : recording.TruthAt(t0_s);
@@ -151,7 +151,8 @@ RunRecord RunRecorded(const Shared& shared) {
     if (truth_m && config.method == Method::kSlam) {
       for (std::size_t a = 0; a < config.anchors_m.size(); ++a) {
         for (const auto& path : channel::ComputeSpecularPaths(shared.simulation.channel_vas, static_cast<int>(a),
-                                                              config.plan, *truth_m, config.channel.pulse.carrier_hz)) {
+                                                              config.plan, *truth_m, config.channel.pulse.carrier_hz,
+                                                              config.channel.medium)) {
           visible_channel_ids.insert(path.va_id);
         }
       }

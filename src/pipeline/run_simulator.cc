@@ -20,7 +20,7 @@ SimulationContext::SimulationContext(const MintExperimentConfig& c) : config(&c)
   channel_vas = geometry::VirtualAnchorSet::Generate(c.anchors_m, c.plan, c.channel_max_order);
   synthesizer = std::make_unique<channel::CirSynthesizer>(c.channel);
   extractor = std::make_unique<dsp::MpcExtractor>(c.mpc, synthesizer->pulse(), synthesizer->sample_count(),
-                                                  c.channel.sample_period_s);
+                                                  c.channel.sample_period_s, c.channel.medium);
   if (c.measurement_model == MeasurementModel::kRangeLevel) {
     range_level = std::make_unique<channel::RangeLevelSimulator>(c.range_level, *synthesizer);
   }
@@ -49,7 +49,7 @@ const std::vector<std::vector<channel::PathTruth>>& RunSimulator::Simulate(std::
   range_level_.clear();
   for (std::size_t a = 0; a < config.anchors_m.size(); ++a) {
     const auto paths = channel::ComputeSpecularPaths(context_.channel_vas, static_cast<int>(a), config.plan,
-                                                     position_m, config.channel.pulse.carrier_hz);
+                                                     position_m, config.channel.pulse.carrier_hz, config.channel.medium);
     // The path-loss reference of the SNR; 1 cm keeps a tag on top of an anchor finite.
     const double los_distance_m = std::max((position_m - config.anchors_m[a]).norm(), 0.01);
     if (context_.range_level) {

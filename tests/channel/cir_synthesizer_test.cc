@@ -191,6 +191,16 @@ TEST(CirSynthesizer, DiffusePdpScalesTheShapeByTheInverseSquareLosDistance) {
               1e-8 * HandDiffusePdp(30e-9, 3.0));
 }
 
+TEST(CirSynthesizer, DiffuseMultipathStartsAtTheLosDelayOfTheMedium) {
+  // In air (343 m/s) a 3.43 m LOS arrives after 10 ms: no DM 1 ns before, DM 1 ns after.
+  ChannelOptions options;
+  options.medium = core::Medium{core::MediumKind::kSound, 343.0};
+  const CirSynthesizer synth(options);
+
+  EXPECT_EQ(synth.DiffusePdp(3.43 / 343.0 - 1e-9, 3.43), 0.0);
+  EXPECT_GT(synth.DiffusePdp(3.43 / 343.0 + 1e-9, 3.43), 0.0);
+}
+
 TEST(CirSynthesizer, TrueSinrIsAmplitudeSquaredOverNoisePlusTeffTimesThePdp) {
   // |a|^2 = 0.04; N0 = 3.1623e-4; T_eff S_nu(30 ns) = 0.50510 ns * 2.4972e6 /s = 1.2613e-3:
   // SINR = 0.04 / 1.5776e-3 = 25.356.
@@ -311,6 +321,11 @@ TEST(CirSynthesizer, ValidateRejectsBadWindowSnrAndSubOptions) {
   EXPECT_EQ(Validate(options).size(), 1u);
   options = ChannelOptions{};
   options.snr_at_1m_db = nan;
+  EXPECT_EQ(Validate(options).size(), 1u);
+  options = ChannelOptions{};
+  options.medium.speed_mps = 0.0;
+  EXPECT_EQ(Validate(options).size(), 1u);
+  options.medium.speed_mps = nan;
   EXPECT_EQ(Validate(options).size(), 1u);
   options = ChannelOptions{};
   options.pulse.rolloff = 2.0;

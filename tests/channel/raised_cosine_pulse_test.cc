@@ -149,8 +149,20 @@ TEST(RaisedCosinePulse, RangeSigmaAtUnitSinrIsAbout6Point3Centimetres) {
   const RaisedCosinePulse half(Options(0.5e-9));
   const RaisedCosinePulse one(Options(1e-9));
 
-  EXPECT_NEAR(half.range_sigma_at_unit_sinr_m(), 0.06292, 0.00005);
-  EXPECT_NEAR(one.range_sigma_at_unit_sinr_m(), 0.12583, 0.0001);
+  EXPECT_NEAR(half.range_sigma_at_unit_sinr_m(core::kSpeedOfLight_mps), 0.06292, 0.00005);
+  EXPECT_NEAR(one.range_sigma_at_unit_sinr_m(core::kSpeedOfLight_mps), 0.12583, 0.0001);
+}
+
+TEST(RaisedCosinePulse, RangeSigmaAtUnitSinrScalesWithTheSpeedOfTheMedium) {
+  // The pulse fixes the delay resolution; the medium turns it into metres: sound at 343 m/s
+  // resolves 343 / 299792458 as finely as radio with the same pulse.
+  const RaisedCosinePulse pulse(Options(0.5e-9));
+
+  const double radio_m = pulse.range_sigma_at_unit_sinr_m(core::kSpeedOfLight_mps);
+  const double sound_m = pulse.range_sigma_at_unit_sinr_m(343.0);
+
+  EXPECT_NEAR(sound_m / radio_m, 343.0 / core::kSpeedOfLight_mps, 1e-15);
+  EXPECT_DOUBLE_EQ(sound_m, 343.0 / (std::sqrt(8.0) * core::kPi * pulse.rms_bandwidth_hz()));
 }
 
 TEST(RaisedCosinePulse, EffectiveDurationMatchesTheIntegralOfPToTheFourth) {

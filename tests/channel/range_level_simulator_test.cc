@@ -43,7 +43,7 @@ TEST(RangeLevelSimulator, RangeNoiseFollowsTheCrlbOfTheTrueSinr) {
     sum2 += e * e;
   }
   const double sigma = std::sqrt(sum2 / n - (sum / n) * (sum / n));
-  const double crlb = synth.pulse().range_sigma_at_unit_sinr_m() / std::sqrt(10.0);
+  const double crlb = synth.pulse().range_sigma_at_unit_sinr_m(synth.options().medium.speed_mps) / std::sqrt(10.0);
   EXPECT_NEAR(sigma / crlb, 1.0, 0.05);
   EXPECT_NEAR(sum / n, 0.0, 4.0 * crlb / std::sqrt(n));
 }

@@ -39,7 +39,7 @@ TEST(ComputeSpecularPaths, ReturnsOnePathPerVisibleVaInIdOrder) {
   const std::vector<Vec2> anchors{kAnchor};
   const auto vas = geometry::VirtualAnchorSet::Generate(anchors, plan, 2);
 
-  const auto paths = ComputeSpecularPaths(vas, 0, plan, kAgent, kCarrier_hz);
+  const auto paths = ComputeSpecularPaths(vas, 0, plan, kAgent, kCarrier_hz, core::Medium::Radio());
 
   // From (3,3) the LOS, all 4 order-1 VAs and 8 of the 12 order-2 VAs are visible (hand traced in
   // tests/geometry/visibility_test.cc).
@@ -58,7 +58,7 @@ TEST(ComputeSpecularPaths, GivesTheLosAFreeSpaceAmplitudeAndCarrierPhase) {
   const std::vector<Vec2> anchors{kAnchor};
   const auto vas = geometry::VirtualAnchorSet::Generate(anchors, plan, 1);
 
-  const auto paths = ComputeSpecularPaths(vas, 0, plan, kAgent, kCarrier_hz);
+  const auto paths = ComputeSpecularPaths(vas, 0, plan, kAgent, kCarrier_hz, core::Medium::Radio());
 
   ASSERT_FALSE(paths.empty());
   const SpecularPath& los = paths.front();
@@ -70,6 +70,22 @@ TEST(ComputeSpecularPaths, GivesTheLosAFreeSpaceAmplitudeAndCarrierPhase) {
   EXPECT_NEAR(std::remainder(std::arg(los.amplitude) - WrappedPhase(los.delay_s), 2.0 * kPi), 0.0, 1e-9);
   // f_c tau = 7e9 * 2.5 / 299792458 = 58.373717 cycles -> phase -2 pi * 0.373717 = -2.348131 rad.
   EXPECT_NEAR(std::arg(los.amplitude), -2.348131, 1e-6);
+}
+
+TEST(ComputeSpecularPaths, DelaysEachPathByItsLengthOverTheSpeedOfTheMedium) {
+  // LOS 2.5 m in air at 343 m/s: 7.289 ms; the south-wall reflection sqrt(24.25) m likewise.
+  const auto plan = SquareRoom();
+  const std::vector<Vec2> anchors{kAnchor};
+  const auto vas = geometry::VirtualAnchorSet::Generate(anchors, plan, 1);
+  const core::Medium air{core::MediumKind::kSound, 343.0};
+
+  const auto paths = ComputeSpecularPaths(vas, 0, plan, kAgent, kCarrier_hz, air);
+
+  ASSERT_EQ(paths.size(), 5u);
+  EXPECT_DOUBLE_EQ(paths[0].delay_s, 2.5 / 343.0);
+  for (const auto& path : paths) {
+    EXPECT_DOUBLE_EQ(path.delay_s, (vas[path.va_id].position_m - kAgent).norm() / 343.0) << "VA " << path.va_id;
+  }
 }
 
 TEST(ComputeSpecularPaths, ScalesReflectedAmplitudesByTheWallGainsOverTheDistance) {
@@ -85,7 +101,7 @@ TEST(ComputeSpecularPaths, ScalesReflectedAmplitudesByTheWallGainsOverTheDistanc
   };
   const std::vector<Case> cases{{{0}, std::sqrt(24.25), 0.9}, {{0, 1}, std::sqrt(36.25), 0.72}};
 
-  const auto paths = ComputeSpecularPaths(vas, 0, plan, kAgent, kCarrier_hz);
+  const auto paths = ComputeSpecularPaths(vas, 0, plan, kAgent, kCarrier_hz, core::Medium::Radio());
 
   for (const auto& c : cases) {
     const SpecularPath* found = nullptr;
@@ -107,7 +123,7 @@ TEST(ComputeSpecularPaths, OmitsPathsBlockedByAPillar) {
   const std::vector<Vec2> anchors{kAnchor};
   const auto vas = geometry::VirtualAnchorSet::Generate(anchors, plan, 1);
 
-  const auto paths = ComputeSpecularPaths(vas, 0, plan, kAgent, kCarrier_hz);
+  const auto paths = ComputeSpecularPaths(vas, 0, plan, kAgent, kCarrier_hz, core::Medium::Radio());
 
   ASSERT_EQ(paths.size(), 2u);
   EXPECT_EQ(vas[paths[0].va_id].walls, std::vector<int>{0});
@@ -115,16 +131,28 @@ TEST(ComputeSpecularPaths, OmitsPathsBlockedByAPillar) {
 }
 
 TEST(ComputeSpecularPaths, ClampsTheDistanceOfANearFieldPathTo1Centimetre) {
-  // Agent on the anchor: the LOS distance 0 is clamped to 0.01 m, |alpha| = 100.
+  // Agent 1 mm from the anchor: the LOS distance is clamped to 0.01 m, |alpha| = 100.
   const auto plan = SquareRoom();
   const std::vector<Vec2> anchors{kAnchor};
   const auto vas = geometry::VirtualAnchorSet::Generate(anchors, plan, 0);
 
-  const auto paths = ComputeSpecularPaths(vas, 0, plan, kAnchor, kCarrier_hz);
+  const auto paths = ComputeSpecularPaths(vas, 0, plan, kAnchor + Vec2(0.001, 0.0), kCarrier_hz, core::Medium::Radio());
 
   ASSERT_EQ(paths.size(), 1u);
   EXPECT_NEAR(std::abs(paths[0].amplitude), 100.0, 1e-10);
   EXPECT_NEAR(paths[0].delay_s, 0.01 / kSpeedOfLight_mps, 1e-22);
+}
+
+TEST(ComputeSpecularPaths, GivesAnAgentOnTopOfTheAnchorNoLineOfSight) {
+  // A zero-length path is outside every model here (image_source.h: kOnLineTolerance_m).
+  const auto plan = SquareRoom();
+  const std::vector<Vec2> anchors{kAnchor};
+  const auto vas = geometry::VirtualAnchorSet::Generate(anchors, plan, 1);
+
+  const auto paths = ComputeSpecularPaths(vas, 0, plan, kAnchor, kCarrier_hz, core::Medium::Radio());
+
+  ASSERT_EQ(paths.size(), 4u);
+  for (const auto& path : paths) EXPECT_EQ(path.order, 1);
 }
 
 TEST(ComputeSpecularPaths, ScalesThePhaseWithTheCarrier) {
@@ -133,8 +161,8 @@ TEST(ComputeSpecularPaths, ScalesThePhaseWithTheCarrier) {
   const std::vector<Vec2> anchors{kAnchor};
   const auto vas = geometry::VirtualAnchorSet::Generate(anchors, plan, 0);
 
-  const auto at_f = ComputeSpecularPaths(vas, 0, plan, kAgent, 3.5e9);
-  const auto at_2f = ComputeSpecularPaths(vas, 0, plan, kAgent, 7e9);
+  const auto at_f = ComputeSpecularPaths(vas, 0, plan, kAgent, 3.5e9, core::Medium::Radio());
+  const auto at_2f = ComputeSpecularPaths(vas, 0, plan, kAgent, 7e9, core::Medium::Radio());
 
   ASSERT_EQ(at_f.size(), 1u);
   ASSERT_EQ(at_2f.size(), 1u);

@@ -50,7 +50,8 @@ core::Cir Noiseless(const channel::CirSynthesizer& synth, const std::vector<chan
 }
 
 MpcExtractor ExtractorFor(const channel::CirSynthesizer& synth, const MpcExtractorOptions& options) {
-  return MpcExtractor(options, synth.pulse(), synth.sample_count(), synth.options().sample_period_s);
+  return MpcExtractor(options, synth.pulse(), synth.sample_count(), synth.options().sample_period_s,
+                      synth.options().medium);
 }
 
 // The component nearest in delay to delay_s.
@@ -116,6 +117,20 @@ TEST(MpcExtractor, RecoversASingleNoiselessPathAtRandomFractionalDelays) {
     EXPECT_LT(std::abs(mpcs[0].amplitude - alpha) / std::abs(alpha), 0.02) << "delay " << delay_s;
     EXPECT_DOUBLE_EQ(mpcs[0].range_m, mpcs[0].delay_s * kSpeedOfLight_mps);
   }
+}
+
+TEST(MpcExtractor, TurnsDelaysIntoRangesWithTheSpeedOfItsMedium) {
+  // The same CIR read as sound at 343 m/s: same delays, ranges delay * 343 m/s.
+  const channel::CirSynthesizer synth(Options(200.0));
+  const core::Medium air{core::MediumKind::kSound, 343.0};
+  const MpcExtractor extractor(Extraction(), synth.pulse(), synth.sample_count(), synth.options().sample_period_s, air);
+
+  const auto mpcs = extractor.Extract(Noiseless(synth, {Path(20.3e-9, Complex(0.4, 0.1))}));
+
+  ASSERT_EQ(mpcs.size(), 1u);
+  EXPECT_NEAR(mpcs[0].delay_s, 20.3e-9, 2e-12);
+  EXPECT_DOUBLE_EQ(mpcs[0].range_m, mpcs[0].delay_s * 343.0);
+  EXPECT_EQ(extractor.medium().speed_mps, 343.0);
 }
 
 TEST(MpcExtractor, RecoversTwoPathsThreeNanosecondsApart) {

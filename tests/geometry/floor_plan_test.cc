@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "mirage/geometry/floor_plan.h"
 
+#include <cmath>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -148,6 +149,24 @@ TEST(FloorPlanInsideObstacle, DetectsPointsInsideOrOnAnyObstacle) {
   EXPECT_FALSE(plan.InsideObstacle(Vec2(2.6, 2)));
   EXPECT_FALSE(plan.InsideObstacle(Vec2(1, 3.3)));
   EXPECT_FALSE(SquareRoom().InsideObstacle(Vec2(2, 2)));
+}
+
+// ---------------------------------------------------------------------------------------------
+// Heights
+// ---------------------------------------------------------------------------------------------
+
+TEST(FloorPlanHeights, DefaultToAFloorAtZeroAndNoCeilingSoThat2DPlansKeepWorking) {
+  EXPECT_EQ(SquareRoom().floor_z_m(), 0.0);
+  EXPECT_EQ(SquareRoom().ceiling_z_m(), kNoCeiling_m);
+  EXPECT_TRUE(std::isinf(FloorPlan().ceiling_z_m()));
+}
+
+TEST(FloorPlanHeights, KeepTheGivenFloorAndCeiling) {
+  const FloorPlan plan(SquareWalls(), {}, -0.2, 2.8);
+
+  EXPECT_EQ(plan.floor_z_m(), -0.2);
+  EXPECT_EQ(plan.ceiling_z_m(), 2.8);
+  EXPECT_EQ(plan.walls().size(), 4u);
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -171,6 +171,19 @@ TEST(MirrorPoint, LeavesAPointOnTheLineInPlaceAndIsAnInvolution) {
   EXPECT_TRUE(MirrorPoint(MirrorPoint(x, a, b), a, b).isApprox(x, kTol));
 }
 
+TEST(LineNormal, TurnsTheUnitDirectionByPlusNinetyDegrees) {
+  // (4,0) -> (0,3): direction (-0.8, 0.6), normal (-0.6, -0.8).
+  EXPECT_TRUE(LineNormal(Vec2(4, 0), Vec2(0, 3)).isApprox(Vec2(-0.6, -0.8), kTol));
+  EXPECT_EQ(LineNormal(Vec2(0, 0), Vec2(5, 0)), Vec2(0, 1));
+}
+
+TEST(MirrorAtLine, MirrorsAtTheLineThroughAPointWithAGivenNormal) {
+  // y = 2 through (7, 2), normal (0, 1): (1, 5) -> (1, -1). MirrorPoint is this with LineNormal.
+  EXPECT_TRUE(MirrorAtLine(Vec2(1, 5), Vec2(7, 2), Vec2(0, 1)).isApprox(Vec2(1, -1), kTol));
+  const Vec2 a(4, 0), b(0, 3), x(-0.7, 5.3);
+  EXPECT_EQ(MirrorAtLine(x, a, LineNormal(a, b)), MirrorPoint(x, a, b));
+}
+
 // ---------------------------------------------------------------------------------------------
 // SignedDistanceToLine
 // ---------------------------------------------------------------------------------------------

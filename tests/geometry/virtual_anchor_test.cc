@@ -229,5 +229,86 @@ TEST(VirtualAnchorSet, KeepsTheVasOfEachAnchorContiguous) {
   EXPECT_EQ(west->parent, 17);
 }
 
+// ---------------------------------------------------------------------------------------------
+// The VA set as a cache of the image-source engine
+// ---------------------------------------------------------------------------------------------
+
+// A pentagon (no parallel walls) with an interior stub collinear with nothing and a wall piece
+// collinear with wall 0, so that every generation rule fires.
+FloorPlan IrregularPlan() {
+  const std::vector<Vec2> corners{Vec2(0, 0), Vec2(6, -0.5), Vec2(7, 4), Vec2(3, 6.5), Vec2(-0.5, 4)};
+  std::vector<Wall> walls;
+  for (std::size_t i = 0; i < corners.size(); ++i) walls.push_back({corners[i], corners[(i + 1) % corners.size()], 0.5, ""});
+  walls.push_back({Vec2(2.0, 1.0), Vec2(3.0, 2.5), 0.6, "stub"});
+  walls.push_back({Vec2(-6, 0.5), Vec2(-3, 0.25), 0.7, "collinear with wall 0"});
+  return FloorPlan(walls, {});
+}
+
+TEST(VirtualAnchorSet, PlacesEveryVaAtTheEnginesImageOfItsAnchorBitForBit) {
+  const FloorPlan plan = IrregularPlan();
+  const std::vector<Vec2> anchors{Vec2(1.0, 1.5), Vec2(4.5, 3.0)};
+
+  const auto vas = VirtualAnchorSet::Generate(anchors, plan, 3);
+
+  for (const auto& va : vas.all()) {
+    const auto images = ImageChain(plan, va.walls, anchors[static_cast<std::size_t>(va.anchor_index)]);
+    EXPECT_EQ(images.back(), va.position_m) << "VA " << va.id;
+    // Each ancestor is the chain's image of its order.
+    const VirtualAnchor* ancestor = &va;
+    for (int k = va.order; k > 0; --k) {
+      EXPECT_EQ(images[static_cast<std::size_t>(k)], ancestor->position_m);
+      ancestor = &vas[ancestor->parent];
+    }
+  }
+}
+
+TEST(VirtualAnchorSet, HoldsExactlyTheSequencesTheEnginesRulesAllow) {
+  // Independent enumeration: every sequence up to order 3 whose every mirror passes CanMirror.
+  const FloorPlan plan = IrregularPlan();
+  const int walls = static_cast<int>(plan.walls().size());
+  const std::vector<Vec2> anchors{Vec2(1.0, 1.5)};
+  std::vector<std::vector<int>> allowed{{}};
+  std::vector<std::pair<std::vector<int>, Vec2>> level{{{}, anchors[0]}};
+  for (int order = 1; order <= 3; ++order) {
+    std::vector<std::pair<std::vector<int>, Vec2>> next;
+    for (const auto& [s, image] : level) {
+      for (int w = 0; w < walls; ++w) {
+        if (!CanMirror(plan, s.empty() ? -1 : s.back(), w, image)) continue;
+        auto t = s;
+        t.push_back(w);
+        allowed.push_back(t);
+        next.emplace_back(t, MirrorAtWall(plan.walls()[static_cast<std::size_t>(w)], image));
+      }
+    }
+    level = next;
+  }
+
+  const auto vas = VirtualAnchorSet::Generate(anchors, plan, 3);
+
+  ASSERT_EQ(vas.size(), static_cast<int>(allowed.size()));
+  for (std::size_t i = 0; i < allowed.size(); ++i) EXPECT_EQ(vas[static_cast<int>(i)].walls, allowed[i]);
+  // The rules did fire: 7 walls would give 1 + 7 + 42 + 252 sequences without immediate repeats.
+  EXPECT_LT(vas.size(), 1 + 7 + 42 + 252);
+}
+
+TEST(VirtualAnchorSet, GivesEveryVaTheHeightOfItsAnchor) {
+  // Vertical walls keep z: every VA of an anchor at 2.5 m is at 2.5 m, in the plane where the
+  // planar set puts it.
+  const std::vector<Vec3> anchors{Vec3(1.0, 1.5, 2.5), Vec3(3.0, 2.5, 0.8)};
+  const std::vector<Vec2> planar{Vec2(1.0, 1.5), Vec2(3.0, 2.5)};
+
+  const auto vas = VirtualAnchorSet::Generate(anchors, FloorPlan(SquareWalls(), {}), 2);
+  const auto flat = VirtualAnchorSet::Generate(planar, FloorPlan(SquareWalls(), {}), 2);
+
+  ASSERT_EQ(vas.size(), flat.size());
+  for (int id = 0; id < vas.size(); ++id) {
+    const double z = anchors[static_cast<std::size_t>(vas[id].anchor_index)].z();
+    EXPECT_EQ(vas[id].height_m, z);
+    EXPECT_EQ(vas[id].position_m, flat[id].position_m);
+    EXPECT_EQ(vas[id].position3_m(), Vec3(flat[id].position_m.x(), flat[id].position_m.y(), z));
+    EXPECT_EQ(flat[id].height_m, 0.0);
+  }
+}
+
 }  // namespace
 }  // namespace mirage::geometry

@@ -317,5 +317,79 @@ TEST(Visibility, AnInteriorWallStubBlocksOneReflectionAndReflectsItself) {
   EXPECT_NEAR(path->length_m, std::sqrt(7.25), 1e-12);
 }
 
+// ---------------------------------------------------------------------------------------------
+// 3-D and degenerate cases
+// ---------------------------------------------------------------------------------------------
+
+// The anchor and the agent of the golden values, at 2.5 m and 1.0 m.
+const Vec3 kTallAnchor(1.0, 1.5, 2.5);
+const Vec3 kSeatedAgent(3.0, 3.0, 1.0);
+
+VirtualAnchorSet GenerateTall(const FloorPlan& plan, int max_order) {
+  const std::vector<Vec3> anchors{kTallAnchor};
+  return VirtualAnchorSet::Generate(anchors, plan, max_order);
+}
+
+TEST(Visibility, TracesGoldenReflectionHeightsIn3D) {
+  // South wall: the reflection (5/3, 0) lies 2/3 along the unfolded path, at 1.0 + 2/3 * 1.5 =
+  // 2.0 m. {0,1}: (4, 1.875) at 1/4 and (7/3, 0) at 2/3 of it (hand traced above): 1.375 m and
+  // 2.0 m. Lengths sqrt(24.25 + 2.25), sqrt(36.25 + 2.25).
+  const FloorPlan plan(SquareWalls(), {}, 0.0, 3.0);
+  const auto vas = GenerateTall(plan, 2);
+
+  const auto south = TraceVirtualAnchor(vas, IdOf(vas, {0}), plan, kSeatedAgent);
+  const auto corner = TraceVirtualAnchor(vas, IdOf(vas, {0, 1}), plan, kSeatedAgent);
+
+  ASSERT_TRUE(south.has_value());
+  ASSERT_EQ(south->points_m.size(), 3u);
+  EXPECT_NEAR((south->points_m[1] - Vec3(5.0 / 3.0, 0, 2.0)).norm(), 0.0, 1e-12);
+  EXPECT_EQ(south->points_m[0], kSeatedAgent);
+  EXPECT_EQ(south->points_m[2], kTallAnchor);
+  EXPECT_NEAR(south->length_m, std::sqrt(26.5), 1e-12);
+  ASSERT_TRUE(corner.has_value());
+  ASSERT_EQ(corner->points_m.size(), 4u);
+  EXPECT_NEAR((corner->points_m[1] - Vec3(4, 1.875, 1.375)).norm(), 0.0, 1e-12);
+  EXPECT_NEAR((corner->points_m[2] - Vec3(7.0 / 3.0, 0, 2.0)).norm(), 0.0, 1e-12);
+  EXPECT_NEAR(corner->length_m, std::sqrt(38.5), 1e-12);
+}
+
+TEST(Visibility, HidesA3DReflectionAboveTheCeilingButNotTheLineOfSight) {
+  // The same paths under a 1.9 m ceiling: both reach 2.0 m, the LOS has no reflection point.
+  const FloorPlan low(SquareWalls(), {}, 0.0, 1.9);
+  const auto vas = GenerateTall(low, 2);
+
+  EXPECT_FALSE(TraceVirtualAnchor(vas, IdOf(vas, {0}), low, kSeatedAgent).has_value());
+  EXPECT_FALSE(TraceVirtualAnchor(vas, IdOf(vas, {0, 1}), low, kSeatedAgent).has_value());
+  EXPECT_TRUE(TraceVirtualAnchor(vas, 0, low, kSeatedAgent).has_value());
+  // The planar trace knows no heights.
+  EXPECT_TRUE(IsVisible(vas, IdOf(vas, {0}), low, Vec2(3.0, 3.0)));
+}
+
+TEST(Visibility, Agrees3DWith2DOnWhichVasAreVisibleAndWhere) {
+  // With no ceiling, 3-D visibility is planar visibility; the points project onto the 2-D ones.
+  const FloorPlan plan(SquareWalls(), {{Vec2(2.0, 2.25), 0.4, "pillar"}});
+  const auto vas = GenerateTall(plan, 3);
+  for (const Vec2& agent : {kAgent, Vec2(2.0, 0.2), Vec2(3.5, 1.5), Vec2(0.4, 3.6)}) {
+    for (int id = 0; id < vas.size(); ++id) {
+      const auto flat = TraceVirtualAnchor(vas, id, plan, agent);
+      const auto tall = TraceVirtualAnchor(vas, id, plan, Vec3(agent.x(), agent.y(), 0.9));
+      ASSERT_EQ(flat.has_value(), tall.has_value()) << "VA " << id;
+      if (!flat) continue;
+      ASSERT_EQ(flat->points_m.size(), tall->points_m.size());
+      for (std::size_t k = 0; k < flat->points_m.size(); ++k) EXPECT_EQ(tall->points_m[k].head<2>(), flat->points_m[k]);
+    }
+  }
+}
+
+TEST(Visibility, GivesAnAgentOnTopOfTheAnchorNoLineOfSight) {
+  // A zero-length path does not exist (image_source.h, kOnLineTolerance_m); the reflections do.
+  const FloorPlan plan(SquareWalls(), {});
+  const auto vas = Generate(plan, 1);
+
+  EXPECT_FALSE(IsVisible(vas, 0, plan, kAnchor));
+  EXPECT_TRUE(IsVisible(vas, 0, plan, kAnchor + Vec2(1e-6, 0.0)));
+  EXPECT_EQ(VisibleVirtualAnchors(vas, 0, plan, kAnchor), (std::vector<int>{1, 2, 3, 4}));
+}
+
 }  // namespace
 }  // namespace mirage::geometry

@@ -17,12 +17,16 @@
 #include "mirage/channel/specular_path.h"
 #include "mirage/core/fft.h"
 #include "mirage/core/measurements.h"
+#include "mirage/core/medium.h"
 #include "mirage/core/rng.h"
 
 namespace mirage::channel {
 
 /// Parameters of the simulated channel and receiver.
 struct ChannelOptions {
+  /// What carries the signal: its speed turns path lengths into delays (m/s). Radio (the speed
+  /// of light) until the scenario schema can name another medium.
+  core::Medium medium = core::Medium::Radio();
   /// Transmit pulse.
   PulseOptions pulse;
   /// Diffuse multipath.

@@ -53,7 +53,9 @@ class RaisedCosinePulse {
   /// power delay profile into interference energy in the SINR of Eq. (3.25).
   [[nodiscard]] double effective_duration_s() const { return effective_duration_s_; }
   /// Range standard deviation at SINR = 1 from the CRLB, c / (sqrt(8) pi beta) (m), Eq. (3.28).
-  [[nodiscard]] double range_sigma_at_unit_sinr_m() const;
+  /// @param speed_mps the signal speed c of the medium (m/s), > 0: the pulse fixes the delay
+  ///                  resolution, the medium turns it into a range.
+  [[nodiscard]] double range_sigma_at_unit_sinr_m(double speed_mps) const;
   /// The spectrum of the discrete unit-energy pulse p[n] = sqrt(T_s) p(n T_s) on the bins of a
   /// length-fft_size DFT: P(f_k) / sqrt(T_s), real and even (bin k >= fft_size / 2 is negative).
   [[nodiscard]] std::vector<double> SampledSpectrum(std::size_t fft_size, double sample_period_s) const;

@@ -1,11 +1,12 @@
 // SPDX-License-Identifier: MIT
 // Deterministic (specular) multipath components: one per VA visible from the agent, with delay
-// d/c, free-space amplitude, the product of the walls' reflection coefficients and the carrier
+// d/c (c the medium's signal speed), free-space amplitude, the product of the walls' reflection coefficients and the carrier
 // phase (Lafer 2014 Eq. 2.2, 2.5; digest Sec. 6.2 item 3).
 #pragma once
 
 #include <vector>
 
+#include "mirage/core/medium.h"
 #include "mirage/core/types.h"
 #include "mirage/geometry/floor_plan.h"
 #include "mirage/geometry/virtual_anchor.h"
@@ -23,8 +24,11 @@ struct SpecularPath {
 };
 
 /// The specular paths of all VAs of one anchor visible from agent_m, by ray tracing.
+/// @param agent_m    agent position (m).
+/// @param carrier_hz carrier frequency f_c of the phase (Hz).
+/// @param medium     carries the signal: delay = distance / medium.speed_mps.
 std::vector<SpecularPath> ComputeSpecularPaths(const geometry::VirtualAnchorSet& vas, int anchor_index,
                                                const geometry::FloorPlan& plan, const Vec2& agent_m,
-                                               double carrier_hz);
+                                               double carrier_hz, const core::Medium& medium);
 
 }  // namespace mirage::channel

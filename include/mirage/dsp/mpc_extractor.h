@@ -17,6 +17,7 @@
 #include "mirage/channel/raised_cosine_pulse.h"
 #include "mirage/core/fft.h"
 #include "mirage/core/measurements.h"
+#include "mirage/core/medium.h"
 #include "mirage/core/types.h"
 
 namespace mirage::dsp {
@@ -41,7 +42,7 @@ std::vector<std::string> Validate(const MpcExtractorOptions& options);
 /// One extracted component.
 struct Mpc {
   double delay_s = 0.0;  ///< estimated delay tau_hat (s)
-  double range_m = 0.0;  ///< c * tau_hat (m)
+  double range_m = 0.0;  ///< c * tau_hat, c the medium's signal speed (m)
   Complex amplitude;     ///< estimated complex amplitude alpha_hat (the CIR's unit)
 };
 
@@ -51,8 +52,12 @@ class MpcExtractor {
   /// @param pulse           the template s(t), the transmit pulse.
   /// @param sample_count    samples per CIR.
   /// @param sample_period_s T_s (s).
+  /// @param medium          carries the signal: range = delay * medium.speed_mps.
   MpcExtractor(const MpcExtractorOptions& options, const channel::RaisedCosinePulse& pulse, int sample_count,
-               double sample_period_s);
+               double sample_period_s, const core::Medium& medium);
+
+  /// The medium whose speed turns delays into ranges.
+  [[nodiscard]] const core::Medium& medium() const { return medium_; }
 
   /// Components sorted by increasing delay. The CIR must have the constructor's length and
   /// sample period.
@@ -99,6 +104,7 @@ class MpcExtractor {
   channel::RaisedCosinePulse pulse_;
   int sample_count_ = 0;
   double sample_period_s_ = 0.0;
+  core::Medium medium_;
   double threshold_ratio_ = 0.0;
   int support_samples_ = 0;                // |R| < 1e-3 beyond this many samples
   std::vector<double> autocorrelation_;    // R(i T_s / kTableOversampling), i >= 0

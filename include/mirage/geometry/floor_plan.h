@@ -1,10 +1,14 @@
 // SPDX-License-Identifier: MIT
-// 2-D floor plan: wall segments with a reflection coefficient, and circular obstacles (pillars).
-// Walls reflect and block; obstacles only block (they are too small and curved to produce a
-// usable specular reflection, Lafer 2014 Sec. 3.7).
+// Floor plan (2.5-D): wall segments with a reflection coefficient and circular obstacles
+// (pillars) in the plane, between a floor and a ceiling height. Walls and obstacles are vertical
+// and span the floor to the ceiling, so a 2-D method sees the plan unchanged. Walls reflect and
+// block; obstacles only block (they are too small and curved to produce a usable specular
+// reflection, Lafer 2014 Sec. 3.7).
 #pragma once
 
+#include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "mirage/core/types.h"
@@ -28,14 +32,25 @@ struct CircleObstacle {
   std::string label;             ///< free-form label
 };
 
-/// Walls and obstacles of one room (or building floor).
+/// Ceiling height of a plan without a ceiling (m): walls of unbounded height.
+inline constexpr double kNoCeiling_m = std::numeric_limits<double>::infinity();
+
+/// Walls and obstacles of one room (or building floor), between floor and ceiling.
 class FloorPlan {
  public:
   FloorPlan() = default;
-  FloorPlan(std::vector<Wall> walls, std::vector<CircleObstacle> obstacles);
+  /// @param floor_z_m   height of the floor (m), finite. 0: heights are measured from the floor.
+  /// @param ceiling_z_m height of the ceiling (m), above the floor. kNoCeiling_m (the default)
+  ///                    keeps a plan without heights working in 3-D: nothing is too high.
+  FloorPlan(std::vector<Wall> walls, std::vector<CircleObstacle> obstacles, double floor_z_m = 0.0,
+            double ceiling_z_m = kNoCeiling_m);
 
   [[nodiscard]] const std::vector<Wall>& walls() const { return walls_; }
   [[nodiscard]] const std::vector<CircleObstacle>& obstacles() const { return obstacles_; }
+  /// Height of the floor (m).
+  [[nodiscard]] double floor_z_m() const { return floor_z_m_; }
+  /// Height of the ceiling (m), kNoCeiling_m if there is none.
+  [[nodiscard]] double ceiling_z_m() const { return ceiling_z_m_; }
 
   /// True if the straight leg a->b crosses no wall and no obstacle. Walls skip_wall_a and
   /// skip_wall_b (indices, -1 for none) are ignored: they are the walls the leg starts or ends
@@ -56,6 +71,8 @@ class FloorPlan {
  private:
   std::vector<Wall> walls_;
   std::vector<CircleObstacle> obstacles_;
+  double floor_z_m_ = 0.0;
+  double ceiling_z_m_ = kNoCeiling_m;
 };
 
 }  // namespace mirage::geometry

@@ -28,6 +28,13 @@ bool SegmentHitsCircle(const Vec2& p, const Vec2& q, const Vec2& center_m, doubl
 /// coincide (within 1 nm) or the input is not finite.
 std::optional<std::array<Vec2, 2>> IntersectCircles(const Vec2& c1, double r1, const Vec2& c2, double r2);
 
+/// Unit normal of the line through a and b (a != b): the direction a -> b turned by +90 degrees.
+Vec2 LineNormal(const Vec2& a, const Vec2& b);
+
+/// Mirror image of point x at the line through point_m with unit normal n:
+/// x - 2 ((x - point_m)^T n) n. The one mirror formula of mirage (image_source.h).
+Vec2 MirrorAtLine(const Vec2& x, const Vec2& point_m, const Vec2& n);
+
 /// Mirror image of point x at the infinite line through a and b (a != b).
 Vec2 MirrorPoint(const Vec2& x, const Vec2& a, const Vec2& b);
 

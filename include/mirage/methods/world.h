@@ -10,7 +10,6 @@
 #include <vector>
 
 #include "mirage/channel/cir_synthesizer.h"
-#include "mirage/core/medium.h"
 #include "mirage/core/types.h"
 #include "mirage/dsp/mpc_extractor.h"
 #include "mirage/geometry/floor_plan.h"
@@ -25,7 +24,6 @@ struct Anchor {
 
 /// The estimator's knowledge of the world.
 struct World {
-  core::Medium medium = core::Medium::Radio();
   /// Anchors, in the order their range sets and links refer to (anchor_index).
   std::vector<Anchor> anchors;
   /// The floor plan the estimator is given; empty when the scenario has none.
@@ -36,7 +34,8 @@ struct World {
   /// Known height of the agents (m), for methods that estimate positions in the plane: ranges
   /// to anchors at other heights are then 3-D. Empty: agents and anchors share one plane.
   std::optional<double> agent_height_m;
-  /// The radio front end: pulse (CRLB scale, pulse duration), sampling and window of the CIRs.
+  /// The front end: the medium (the signal speed), the pulse (CRLB scale, pulse duration), the
+  /// sampling and window of the CIRs.
   channel::ChannelOptions channel;
   /// Multipath-component extraction, for methods that consume CIRs.
   dsp::MpcExtractorOptions mpc;

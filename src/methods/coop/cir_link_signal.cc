@@ -3,7 +3,6 @@
 
 #include <cmath>
 
-#include "mirage/core/constants.h"
 
 namespace mirage::methods::coop {
 
@@ -17,11 +16,11 @@ std::vector<double> CirLinkSignal::Ranges(int count) const {
 }
 
 double CirLinkSignal::AmplitudeAt(double range_m) const {
-  return std::abs(extractor_->ProjectAt(matched_, start_s_, range_m / core::kSpeedOfLight_mps));
+  return std::abs(extractor_->ProjectAt(matched_, start_s_, range_m / extractor_->medium().speed_mps));
 }
 
-PulseFacts PulseFactsOf(const channel::RaisedCosinePulse& pulse) {
-  return {pulse.options().duration_s, pulse.range_sigma_at_unit_sinr_m()};
+PulseFacts PulseFactsOf(const channel::RaisedCosinePulse& pulse, const core::Medium& medium) {
+  return {pulse.options().duration_s, pulse.range_sigma_at_unit_sinr_m(medium.speed_mps), medium};
 }
 
 }  // namespace mirage::methods::coop

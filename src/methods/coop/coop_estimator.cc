@@ -49,9 +49,9 @@ CoopEstimator::CoopEstimator(const CoopOptions& options, const World& world)
       links_(EnumerateLinks(static_cast<int>(world.agents.size()), options.anchor_links)),
       synthesizer_(std::make_unique<channel::CirSynthesizer>(world_.channel)),
       extractor_(std::make_unique<dsp::MpcExtractor>(world_.mpc, synthesizer_->pulse(), synthesizer_->sample_count(),
-                                                     world_.channel.sample_period_s)),
+                                                     world_.channel.sample_period_s, world_.channel.medium)),
       tracker_(options_, world_.floor_plan, links_, Antennas(options_), FirstAnchor(options_, world_),
-               PulseFactsOf(synthesizer_->pulse())) {}
+               PulseFactsOf(synthesizer_->pulse(), world_.channel.medium)) {}
 
 void CoopEstimator::Initialize(const Prior& prior) { tracker_.Initialize(Planar(prior.positions_m), prior.t_s); }
 
@@ -94,18 +94,18 @@ std::vector<std::vector<double>> CoopEstimator::PosteriorBound(const BoundInput&
   // The filter's model on the given plan's walls at their true places.
   const geometry::FloorPlan& plan = *truth.true_known_plan;
   CoopTracker model(options_, plan, links_, Antennas(options_), FirstAnchor(options_, world_),
-                    PulseFactsOf(synthesizer_->pulse()));
+                    PulseFactsOf(synthesizer_->pulse(), world_.channel.medium));
   const int agents = tracker_.agent_count();
   model.Initialize(Planar(truth.positions_m.front()), truth.t_s.front());
   estimation::State state = model.state();
-  const double sigma1_m = synthesizer_->pulse().range_sigma_at_unit_sinr_m();
+  const double sigma1_m = synthesizer_->pulse().range_sigma_at_unit_sinr_m(world_.channel.medium.speed_mps);
   const auto specs = CoopLinks(options_, world_);
   std::vector<Vec2> anchors_m;
   for (const auto& a : world_.anchors) anchors_m.push_back(a.position_m.head<2>());
   channel::LinkPathOptions link_options;
   link_options.max_order = options_.max_order;
   link_options.carrier_hz = world_.channel.pulse.carrier_hz;
-  link_options.speed_mps = world_.medium.speed_mps;
+  link_options.speed_mps = world_.channel.medium.speed_mps;
   link_options.min_reference_m = std::max(options_.antenna_spacing_m, 0.1);
   std::vector<std::vector<double>> bound(truth.positions_m.size());
   for (std::size_t k = 0; k < truth.positions_m.size(); ++k) {
@@ -124,7 +124,7 @@ std::vector<std::vector<double>> CoopEstimator::PosteriorBound(const BoundInput&
           const double length_m = path.range_m();
           double gain = 1.0;
           for (const int s : path.walls) gain *= plan.walls()[static_cast<std::size_t>(s)].reflection_coeff;
-          const double sinr = synthesizer_->TrueSinr(Complex(gain / length_m, 0.0), length_m / world_.medium.speed_mps,
+          const double sinr = synthesizer_->TrueSinr(Complex(gain / length_m, 0.0), length_m / world_.channel.medium.speed_mps,
                                                      dm_reference_m);
           // The model's layout is the layout of `state` (a copy of its initial state).
           rows.push_back(model.JacobianRow(links_[l], path, sigma1_m * sigma1_m / std::max(sinr, 1e-12)));

@@ -9,7 +9,6 @@
 
 #include <fmt/format.h>
 
-#include "mirage/core/constants.h"
 #include "mirage/estimation/covariance_ops.h"
 #include "mirage/estimation/gates/chi2_gate.h"
 #include "mirage/estimation/meas/image_path_range.h"
@@ -81,7 +80,7 @@ CoopTracker::CoopTracker(const CoopOptions& options, geometry::FloorPlan provide
       links_(std::move(links)),
       antennas_(antennas),
       anchor_m_(anchor_m.value_or(Vec2::Zero())),
-      cutoff_m_(options.cutoff_m > 0.0 ? options.cutoff_m : core::kSpeedOfLight_mps * pulse.duration_s),
+      cutoff_m_(options.cutoff_m > 0.0 ? options.cutoff_m : pulse.medium.speed_mps * pulse.duration_s),
       variance_(options.variance, pulse.range_sigma_at_unit_sinr_m) {
   if (!(pulse.duration_s > 0.0) || !(pulse.range_sigma_at_unit_sinr_m > 0.0)) {
     throw std::invalid_argument("CoopTracker: the pulse duration and CRLB scale must be > 0");

@@ -17,7 +17,7 @@ std::vector<Vec2> PlanarAnchors(const World& world) {
 }  // namespace
 
 double RangeSigmaAtUnitSinr(const World& world) {
-  return channel::RaisedCosinePulse(world.channel.pulse).range_sigma_at_unit_sinr_m();
+  return channel::RaisedCosinePulse(world.channel.pulse).range_sigma_at_unit_sinr_m(world.channel.medium.speed_mps);
 }
 
 MintEstimator::MintEstimator(const MintOptions& options, const World& world)

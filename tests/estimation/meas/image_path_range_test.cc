@@ -11,7 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "estimation/jacobian_check.h"
-#include "mirage/geometry/image_path.h"
+#include "mirage/geometry/image_source.h"
 
 namespace mirage::estimation {
 namespace {

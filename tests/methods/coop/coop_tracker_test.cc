@@ -13,7 +13,7 @@
 #include <gtest/gtest.h>
 
 #include "mirage/core/rng.h"
-#include "mirage/geometry/image_path.h"
+#include "mirage/geometry/image_source.h"
 
 namespace mirage::methods::coop {
 namespace {
@@ -51,7 +51,7 @@ class ExactSignal final : public LinkSignal {
   std::vector<double> ranges_;
 };
 
-constexpr PulseFacts kPulse{0.5e-9, 0.063};
+constexpr PulseFacts kPulse{0.5e-9, 0.063, core::Medium{}};
 
 struct Walk {
   std::vector<std::vector<Vec2>> truth;  // per step, per agent

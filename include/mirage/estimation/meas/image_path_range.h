@@ -12,7 +12,7 @@
 
 #include "mirage/estimation/measurement_row.h"
 #include "mirage/estimation/state.h"
-#include "mirage/geometry/image_path.h"
+#include "mirage/geometry/image_source.h"
 
 namespace mirage::estimation {
 

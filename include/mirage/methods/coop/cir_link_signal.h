@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "mirage/core/measurements.h"
+#include "mirage/core/medium.h"
 #include "mirage/core/types.h"
 #include "mirage/dsp/mpc_extractor.h"
 #include "mirage/methods/coop/coop_tracker.h"
@@ -27,7 +28,7 @@ class CirLinkSignal final : public LinkSignal {
   std::vector<Complex> matched_;  // the matched-filter output of the CIR
 };
 
-/// The filter's pulse facts of a transmit pulse.
-PulseFacts PulseFactsOf(const channel::RaisedCosinePulse& pulse);
+/// The filter's pulse facts of a transmit pulse sent through a medium.
+PulseFacts PulseFactsOf(const channel::RaisedCosinePulse& pulse, const core::Medium& medium);
 
 }  // namespace mirage::methods::coop

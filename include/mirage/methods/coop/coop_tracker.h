@@ -34,13 +34,14 @@
 #include <utility>
 #include <vector>
 
+#include "mirage/core/medium.h"
 #include "mirage/core/types.h"
 #include "mirage/estimation/ekf_update.h"
 #include "mirage/estimation/measurement_row.h"
 #include "mirage/estimation/motion/constant_velocity.h"
 #include "mirage/estimation/state.h"
 #include "mirage/geometry/floor_plan.h"
-#include "mirage/geometry/image_path.h"
+#include "mirage/geometry/image_source.h"
 #include "mirage/methods/coop/coop_link.h"
 #include "mirage/estimation/range_variance_estimator.h"
 
@@ -135,6 +136,7 @@ class LinkSignal {
 struct PulseFacts {
   double duration_s = 0.5e-9;               ///< T_p (s): d_c = c T_p
   double range_sigma_at_unit_sinr_m = 0.0;  ///< c / (sqrt(8) pi beta) (m), Eq. (15)
+  core::Medium medium;                      ///< carries the signal: c = medium.speed_mps (m/s)
 };
 
 /// The centralised cooperative EKF.
