@@ -14,6 +14,7 @@
 #include "core/test_options.h"
 #include "mirage/io/input_error.h"
 #include "mirage/io/options_json.h"
+#include "mirage/methods/mint/relocalization.h"
 
 namespace mirage::io {
 namespace {
@@ -177,6 +178,20 @@ TEST(ReadOptions, RejectsACrossFieldProblemAtTheKeyItNames) {
             "test.yaml:3: tracker.window_max_m: 0.05 m must be >= window_min_m (0.1 m)");
   EXPECT_EQ(ErrorOf("tracker:\n  motion:\n    accel_sigma_mps2: 1\n    max_accel_mps2: 0.5\n"),
             "test.yaml:4: tracker.motion.max_accel_mps2: must be >= accel_sigma_mps2");
+}
+
+TEST(ReadOptions, ReadsARealOptionsStructWithItsCrossFieldCheck) {
+  YamlMap root(LoadYamlString("relocalization:\n  search_radius_m: 100\n  search_step_m: 0.001\n", "r.yaml"), "",
+               std::make_shared<YamlOrigins>("r.yaml"));
+  methods::mint::RelocalizationOptions options;
+
+  try {
+    ReadOptions(root.Map("relocalization"), methods::mint::RelocalizationOptionsDescriptor(), {}, options);
+    ADD_FAILURE() << "no InputError";
+  } catch (const InputError& e) {
+    EXPECT_STREQ(e.what(),
+                 "r.yaml:3: relocalization.search_step_m: 0.001 m must be at least search_radius_m / 200 (0.5 m)");
+  }
 }
 
 TEST(ReadOptions, ReadsTheJsonOfTheEffectiveOptionsBackToTheSameValues) {
