@@ -57,80 +57,77 @@ TEST(OptionsDescriptor, AcceptsTheStructsDefaults) {
   EXPECT_TRUE(TestTrackerDescriptor().Validate(TestTrackerOptions{}).empty());
 }
 
-TEST(OptionsDescriptor, NamesKeyValueUnitAndExpectedRangeOfAnOutOfRangeNumber) {
+using Problems = std::vector<std::string>;
+
+// The problems of the default options after `change`.
+template <typename Change>
+Problems ProblemsAfter(Change change) {
   TestTrackerOptions o;
-  o.gate_m = 0.0;
-  o.lost_score = 1.5;
+  change(o);
+  return TestTrackerDescriptor().Validate(o);
+}
 
-  const auto problems = TestTrackerDescriptor().Validate(o);
+TEST(OptionsDescriptor, NamesKeyValueUnitAndExpectedRangeOfAnOutOfRangeNumber) {
+  const auto problems = ProblemsAfter([](TestTrackerOptions& o) {
+    o.gate_m = 0.0;
+    o.lost_score = 1.5;
+  });
 
-  ASSERT_EQ(problems.size(), 2U);
-  EXPECT_EQ(problems[0], "gate_m: 0 m is out of range, expected a number > 0 m");
-  EXPECT_EQ(problems[1], "lost_score: 1.5 is out of range, expected a number in [0, 1]");
+  EXPECT_EQ(problems, (Problems{"gate_m: 0 m is out of range, expected a number > 0 m",
+                                "lost_score: 1.5 is out of range, expected a number in [0, 1]"}));
 }
 
 TEST(OptionsDescriptor, RejectsNanAndInfinityEvenWithoutBounds) {
-  TestTrackerOptions o;
-  o.threshold_db = std::numeric_limits<double>::quiet_NaN();
-  o.window_max_m = std::numeric_limits<double>::infinity();
+  const auto problems = ProblemsAfter([](TestTrackerOptions& o) {
+    o.threshold_db = std::numeric_limits<double>::quiet_NaN();
+    o.window_max_m = std::numeric_limits<double>::infinity();
+  });
 
-  const auto problems = TestTrackerDescriptor().Validate(o);
-
-  ASSERT_EQ(problems.size(), 2U);
-  EXPECT_EQ(problems[0], "window_max_m: inf m is not a finite number, expected a number >= 0 m");
-  EXPECT_EQ(problems[1], "threshold_db: nan dB is not a finite number, expected a number < 0 dB");
+  EXPECT_EQ(problems, (Problems{"window_max_m: inf m is not a finite number, expected a number >= 0 m",
+                                "threshold_db: nan dB is not a finite number, expected a number < 0 dB"}));
 }
 
 TEST(OptionsDescriptor, ChecksIntegerRangesAndTheMemberTypesLimits) {
-  TestTrackerOptions o;
-  o.lost_steps = 0;
-  o.max_order = 7;
-  const OptionField& window = *TestTrackerDescriptor().Find("window_steps");
+  const OptionField& window_steps = *TestTrackerDescriptor().Find("window_steps");
 
-  const auto problems = TestTrackerDescriptor().Validate(o);
-
-  ASSERT_EQ(problems.size(), 2U);
-  EXPECT_EQ(problems[0], "lost_steps: 0 steps is out of range, expected an integer >= 1 steps");
-  EXPECT_EQ(problems[1], "max_order: 7 is out of range, expected an integer in [0, 6]");
+  const auto problems = ProblemsAfter([](TestTrackerOptions& o) {
+    o.lost_steps = 0;
+    o.max_order = 7;
+  });
   // window_steps is a std::size_t: a negative value cannot be stored.
-  const auto negative = window.CheckValue(std::int64_t{-1});
+  const auto negative = window_steps.CheckValue(std::int64_t{-1});
+
+  EXPECT_EQ(problems, (Problems{"lost_steps: 0 steps is out of range, expected an integer >= 1 steps",
+                                "max_order: 7 is out of range, expected an integer in [0, 6]"}));
   ASSERT_TRUE(negative.has_value());
   EXPECT_NE(negative->find("does not fit"), std::string::npos) << *negative;
-  EXPECT_FALSE(window.CheckValue(std::int64_t{3}).has_value());
+  EXPECT_FALSE(window_steps.CheckValue(std::int64_t{3}).has_value());
 }
 
 TEST(OptionsDescriptor, PrefixesTheProblemsOfANestedSectionWithItsKey) {
-  TestTrackerOptions o;
-  o.motion.accel_sigma_mps2 = -1.0;
+  const auto problems = ProblemsAfter([](TestTrackerOptions& o) { o.motion.accel_sigma_mps2 = -1.0; });
 
-  const auto problems = TestTrackerDescriptor().Validate(o);
-
-  ASSERT_EQ(problems.size(), 1U);
-  EXPECT_EQ(problems[0], "motion.accel_sigma_mps2: -1 m/s^2 is out of range, expected a number > 0 m/s^2");
+  EXPECT_EQ(problems, (Problems{"motion.accel_sigma_mps2: -1 m/s^2 is out of range, expected a number > 0 m/s^2"}));
 }
 
 TEST(OptionsDescriptor, RunsTheCrossFieldChecksOfEveryLevel) {
-  TestTrackerOptions o;
-  o.window_min_m = 2.0;
-  o.motion.max_accel_mps2 = 0.1;
+  const auto problems = ProblemsAfter([](TestTrackerOptions& o) {
+    o.window_min_m = 2.0;
+    o.motion.max_accel_mps2 = 0.1;
+  });
 
-  const auto problems = TestTrackerDescriptor().Validate(o);
-
-  ASSERT_EQ(problems.size(), 2U);
-  EXPECT_EQ(problems[0], "motion.max_accel_mps2: must be >= accel_sigma_mps2");
-  EXPECT_EQ(problems[1], "window_max_m: 1 m must be >= window_min_m (2 m)");
+  EXPECT_EQ(problems, (Problems{"motion.max_accel_mps2: must be >= accel_sigma_mps2",
+                                "window_max_m: 1 m must be >= window_min_m (2 m)"}));
 }
 
 TEST(OptionsDescriptor, ReportsAnUnnamedEnumValueAndAStringThatIsNotAChoice) {
-  TestTrackerOptions o;
-  o.model = static_cast<TestModel>(7);
-  o.weight = "tukey";
+  const auto problems = ProblemsAfter([](TestTrackerOptions& o) {
+    o.model = static_cast<TestModel>(7);
+    o.weight = "tukey";
+  });
 
-  const auto problems = TestTrackerDescriptor().Validate(o);
-
-  ASSERT_EQ(problems.size(), 2U);
-  EXPECT_EQ(problems[0], "model: '(unnamed value 7)' is not a known choice, expected one of: cir, ranges");
-  EXPECT_EQ(problems[1], "weight: 'tukey' is not a known choice, expected one of: huber, cauchy");
+  EXPECT_EQ(problems, (Problems{"model: '(unnamed value 7)' is not a known choice, expected one of: cir, ranges",
+                                "weight: 'tukey' is not a known choice, expected one of: huber, cauchy"}));
 }
 
 TEST(OptionField, ReadsAndWritesTheBoundMembersWithoutKnowingTheirStruct) {

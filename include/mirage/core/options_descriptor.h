@@ -92,16 +92,20 @@ class OptionsDescriptor;
 /// JSON writer and renderers) reads and writes it through a pointer to the struct that holds it.
 class OptionField {
  public:
-  /// Reads and writes the field of the object at an address (a T* of the owning descriptor).
+  /// Reads the field of the object at an address (a T* of the owning descriptor).
   using Getter = std::function<OptionValue(const void*)>;
+  /// Writes the field of the object at an address.
   using Setter = std::function<void(void*, const OptionValue&)>;
   /// The address of a section's member inside the object at an address.
   using SectionAccess = std::function<void*(void*)>;
 
+  /// What the field holds.
   [[nodiscard]] OptionKind kind() const { return kind_; }
+  /// The YAML key (the member's name).
   [[nodiscard]] const std::string& key() const { return key_; }
   /// The unit of a number or integer ("" when it has none).
   [[nodiscard]] const std::string& unit() const { return unit_; }
+  /// One or two sentences: meaning, unit, why the default.
   [[nodiscard]] const std::string& doc() const { return doc_; }
   /// The valid values of a number or integer.
   [[nodiscard]] const ValueRange& range() const { return range_; }
@@ -119,6 +123,7 @@ class OptionField {
   void Set(void* owner, const OptionValue& value) const;
   /// The section's member inside `owner` (sections only).
   [[nodiscard]] void* SectionIn(void* owner) const;
+  /// The same for reading.
   [[nodiscard]] const void* SectionIn(const void* owner) const;
 
   /// What the field accepts, for messages: "a number > 0 m/s^2", "an integer in [0, 6]",
@@ -170,7 +175,9 @@ class OptionsDescriptorBase {
 
   /// The struct's qualified name ("estimation::ConstantVelocityOptions").
   [[nodiscard]] const std::string& type_name() const { return type_name_; }
+  /// The fields in declaration order.
   [[nodiscard]] const std::vector<OptionField>& fields() const { return fields_; }
+  /// The cross-field checks in declaration order.
   [[nodiscard]] const std::vector<CrossCheck>& checks() const { return checks_; }
   /// A default-constructed object of the struct: the defaults of a top-level section.
   [[nodiscard]] const void* default_object() const { return defaults_.get(); }
@@ -190,6 +197,7 @@ class OptionsDescriptorBase {
       : type_name_(std::move(type_name)), defaults_(std::move(defaults)) {}
   /// Adds a field; keys are unique per level.
   void AddField(OptionField field);
+  /// Adds a cross-field check.
   void AddCheck(CrossCheck check) { checks_.push_back(std::move(check)); }
 
  private:
@@ -221,15 +229,11 @@ class OptionsDescriptor : public OptionsDescriptorBase {
 
   /// A finite double member with unit, range and optionally a derived default.
   OptionsDescriptor& Number(double T::*member, NumberSpec spec) {
-    OptionField f;
-    f.kind_ = OptionKind::kNumber;
-    f.key_ = std::move(spec.key);
+    OptionField f = NewField(OptionKind::kNumber, std::move(spec.key), std::move(spec.doc));
     f.unit_ = std::move(spec.unit);
     f.range_ = spec.range;
-    f.doc_ = std::move(spec.doc);
     f.derived_ = std::move(spec.derived);
-    f.get_ = [member](const void* o) { return OptionValue(static_cast<const T*>(o)->*member); };
-    f.set_ = [member](void* o, const OptionValue& v) { static_cast<T*>(o)->*member = std::get<double>(v); };
+    BindDirect(f, member);
     AddField(std::move(f));
     return *this;
   }
@@ -240,12 +244,9 @@ class OptionsDescriptor : public OptionsDescriptorBase {
     requires(!std::same_as<I, bool>)
   OptionsDescriptor& Integer(I T::*member, IntegerSpec spec) {
     constexpr std::int64_t kInt64Max = std::numeric_limits<std::int64_t>::max();
-    OptionField f;
-    f.kind_ = OptionKind::kInteger;
-    f.key_ = std::move(spec.key);
+    OptionField f = NewField(OptionKind::kInteger, std::move(spec.key), std::move(spec.doc));
     f.unit_ = std::move(spec.unit);
     f.range_ = spec.range;
-    f.doc_ = std::move(spec.doc);
     f.integer_min_ = static_cast<std::int64_t>(std::numeric_limits<I>::min());
     f.integer_max_ = std::cmp_less(kInt64Max, std::numeric_limits<I>::max())
                          ? kInt64Max
@@ -258,25 +259,17 @@ class OptionsDescriptor : public OptionsDescriptorBase {
 
   /// A bool member.
   OptionsDescriptor& Boolean(bool T::*member, FieldSpec spec) {
-    OptionField f;
-    f.kind_ = OptionKind::kBoolean;
-    f.key_ = std::move(spec.key);
-    f.doc_ = std::move(spec.doc);
-    f.get_ = [member](const void* o) { return OptionValue(static_cast<const T*>(o)->*member); };
-    f.set_ = [member](void* o, const OptionValue& v) { static_cast<T*>(o)->*member = std::get<bool>(v); };
+    OptionField f = NewField(OptionKind::kBoolean, std::move(spec.key), std::move(spec.doc));
+    BindDirect(f, member);
     AddField(std::move(f));
     return *this;
   }
 
   /// A std::string member that must be one of `names`.
   OptionsDescriptor& Choice(std::string T::*member, FieldSpec spec, std::vector<std::string> names) {
-    OptionField f;
-    f.kind_ = OptionKind::kChoice;
-    f.key_ = std::move(spec.key);
-    f.doc_ = std::move(spec.doc);
+    OptionField f = NewField(OptionKind::kChoice, std::move(spec.key), std::move(spec.doc));
     f.choices_ = std::move(names);
-    f.get_ = [member](const void* o) { return OptionValue(static_cast<const T*>(o)->*member); };
-    f.set_ = [member](void* o, const OptionValue& v) { static_cast<T*>(o)->*member = std::get<std::string>(v); };
+    BindDirect(f, member);
     AddField(std::move(f));
     return *this;
   }
@@ -285,10 +278,7 @@ class OptionsDescriptor : public OptionsDescriptorBase {
   template <typename E>
     requires std::is_enum_v<E>
   OptionsDescriptor& Choice(E T::*member, FieldSpec spec, std::vector<std::pair<std::string, E>> table) {
-    OptionField f;
-    f.kind_ = OptionKind::kChoice;
-    f.key_ = std::move(spec.key);
-    f.doc_ = std::move(spec.doc);
+    OptionField f = NewField(OptionKind::kChoice, std::move(spec.key), std::move(spec.doc));
     for (const auto& entry : table) f.choices_.push_back(entry.first);
     f.get_ = [member, table](const void* o) {
       const E value = static_cast<const T*>(o)->*member;
@@ -315,10 +305,7 @@ class OptionsDescriptor : public OptionsDescriptorBase {
   /// `spec.key` (YAML) and with the prefix "key." (messages, describe).
   template <typename S>
   OptionsDescriptor& Section(S T::*member, FieldSpec spec, const OptionsDescriptor<S>& sub) {
-    OptionField f;
-    f.kind_ = OptionKind::kSection;
-    f.key_ = std::move(spec.key);
-    f.doc_ = std::move(spec.doc);
+    OptionField f = NewField(OptionKind::kSection, std::move(spec.key), std::move(spec.doc));
     f.section_ = std::make_shared<const OptionsDescriptor<S>>(sub);
     f.section_access_ = [member](void* o) -> void* { return &(static_cast<T*>(o)->*member); };
     AddField(std::move(f));
@@ -341,6 +328,21 @@ class OptionsDescriptor : public OptionsDescriptorBase {
   void ForEach(const T& options, const FieldVisitor& visit) const { ForEachField(&options, visit); }
   /// A default-constructed T.
   [[nodiscard]] const T& defaults() const { return *static_cast<const T*>(default_object()); }
+
+ private:
+  static OptionField NewField(OptionKind kind, std::string key, std::string doc) {
+    OptionField f;
+    f.kind_ = kind;
+    f.key_ = std::move(key);
+    f.doc_ = std::move(doc);
+    return f;
+  }
+  // Get and set of a member whose type is one of OptionValue's alternatives.
+  template <typename M>
+  static void BindDirect(OptionField& f, M T::*member) {
+    f.get_ = [member](const void* o) { return OptionValue(static_cast<const T*>(o)->*member); };
+    f.set_ = [member](void* o, const OptionValue& v) { static_cast<T*>(o)->*member = std::get<M>(v); };
+  }
 };
 
 }  // namespace mirage::core
