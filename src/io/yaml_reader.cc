@@ -25,6 +25,10 @@ std::string ScalarText(const YAML::Node& node) {
   return "nothing";
 }
 
+InputError SyntaxError(const std::string& file, const YAML::ParserException& e) {
+  return InputError(fmt::format("{}:{}:{}: YAML syntax error: {}", file, e.mark.line + 1, e.mark.column + 1, e.msg));
+}
+
 YAML::Node LoadFile(const std::string& path) {
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) throw InputError(path + ": file not found");
@@ -32,7 +36,7 @@ YAML::Node LoadFile(const std::string& path) {
   try {
     return YAML::LoadFile(path);
   } catch (const YAML::ParserException& e) {
-    throw InputError(fmt::format("{}:{}:{}: YAML syntax error: {}", path, e.mark.line + 1, e.mark.column + 1, e.msg));
+    throw SyntaxError(path, e);
   } catch (const YAML::BadFile&) {
     throw InputError(path + ": cannot read file");
   }
@@ -121,6 +125,14 @@ YAML::Node LoadYamlWithExtends(const std::string& path, YamlOrigins& origins) {
   return LoadWithExtends(path, origins, chain);
 }
 
+YAML::Node LoadYamlString(const std::string& text, const std::string& name) {
+  try {
+    return YAML::Load(text);
+  } catch (const YAML::ParserException& e) {
+    throw SyntaxError(name, e);
+  }
+}
+
 YamlMap::YamlMap(YAML::Node node, std::string path, std::shared_ptr<const YamlOrigins> origins)
     : node_(std::move(node)), path_(std::move(path)), origins_(std::move(origins)) {
   if (!node_.IsMap()) {
@@ -159,25 +171,41 @@ void YamlMap::Fail(const std::string& key, const std::string& message) const {
   throw InputError(fmt::format("{}: {}: {}", Where(at, KeyPath(key)), KeyPath(key), message));
 }
 
+void YamlMap::FailProblem(const std::string& problem) const {
+  const auto space = problem.find(' ');
+  std::string key = problem.substr(0, space);
+  if (!key.empty() && key.back() == ':') key.pop_back();
+  Fail(key, space == std::string::npos ? std::string("invalid") : problem.substr(space + 1));
+}
+
 YAML::Node YamlMap::Get(const std::string& key) {
   used_.insert(key);
   return node_[key];
 }
 
-double YamlMap::ToNumber(const YAML::Node& node, const std::string& key_path) const {
-  double value = 0.0;
-  bool ok = node.IsScalar();
-  if (ok) {
-    try {
-      value = node.as<double>();
-    } catch (const YAML::Exception&) {
-      ok = false;
-    }
+std::optional<double> YamlMap::ParseNumber(const YAML::Node& node) {
+  if (!node.IsScalar()) return std::nullopt;
+  try {
+    return node.as<double>();
+  } catch (const YAML::Exception&) {
+    return std::nullopt;
   }
-  if (!ok) throw InputError(fmt::format("{}: {}: expected a number, got {}", Where(node, key_path), key_path, ScalarText(node)));
-  if (!std::isfinite(value)) {
+}
+
+double YamlMap::ToNumber(const YAML::Node& node, const std::string& key_path) const {
+  const std::optional<double> value = ParseNumber(node);
+  if (!value) throw InputError(fmt::format("{}: {}: expected a number, got {}", Where(node, key_path), key_path, ScalarText(node)));
+  if (!std::isfinite(*value)) {
     throw InputError(fmt::format("{}: {}: expected a finite number, got {}", Where(node, key_path), key_path, ScalarText(node)));
   }
+  return *value;
+}
+
+std::optional<double> YamlMap::FiniteNumber(const std::string& key, const std::string& expected) {
+  const YAML::Node n = Get(key);
+  if (!n) return std::nullopt;
+  const std::optional<double> value = ParseNumber(n);
+  if (!value || !std::isfinite(*value)) Fail(key, fmt::format("expected {}, got {}", expected, ScalarText(n)));
   return value;
 }
 

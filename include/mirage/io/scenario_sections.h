@@ -42,11 +42,7 @@ void CheckVirtualAnchorCount(YamlMap& section, const std::string& key, std::size
 template <typename Options>
 void Check(const Options& options, const YamlMap& section) {
   const auto problems = Validate(options);
-  if (!problems.empty()) {
-    const std::string& p = problems.front();
-    const auto space = p.find(' ');
-    section.Fail(p.substr(0, space), p.substr(space + 1));
-  }
+  if (!problems.empty()) section.FailProblem(problems.front());
 }
 
 /// The `materials` table: name -> amplitude reflection coefficient in (0, 1].

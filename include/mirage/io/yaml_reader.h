@@ -39,6 +39,10 @@ class YamlOrigins {
 /// Throws InputError for missing files and syntax errors.
 YAML::Node LoadYamlWithExtends(const std::string& path, YamlOrigins& origins);
 
+/// Parses YAML text (tests, options given on a command line); `name` stands for the file in
+/// messages. Throws InputError for syntax errors.
+YAML::Node LoadYamlString(const std::string& text, const std::string& name);
+
 /// One YAML mapping being read.
 class YamlMap {
  public:
@@ -53,6 +57,9 @@ class YamlMap {
   double Number(const std::string& key, double fallback);
   /// A required finite number.
   double Number(const std::string& key);
+  /// A finite number, or empty when the key is absent. Anything else fails with "expected
+  /// <expected>, got ..." (`expected` names the range and unit: "a number > 0 m/s^2").
+  std::optional<double> FiniteNumber(const std::string& key, const std::string& expected);
   /// A number in [lo, hi] (inclusive), with the unit for the message.
   double NumberInRange(const std::string& key, double fallback, double lo, double hi, const std::string& unit);
   /// An integer; `fallback` when absent.
@@ -88,6 +95,9 @@ class YamlMap {
 
   /// Throws an InputError "file:line: path.key: message".
   [[noreturn]] void Fail(const std::string& key, const std::string& message) const;
+  /// Throws an InputError for a problem returned by a Validate() function, "key.path: message"
+  /// (or, in the older form, "key.path message"), at the key it names.
+  [[noreturn]] void FailProblem(const std::string& problem) const;
   /// Throws an InputError "file:line: path.key[index]: message" at the line of entry `index` of
   /// the list at `key` (for checks on single entries of NumberList and BooleanList).
   [[noreturn]] void FailAt(const std::string& key, std::size_t index, const std::string& message) const;
@@ -97,6 +107,8 @@ class YamlMap {
   [[nodiscard]] std::string KeyPath(const std::string& key) const;
   [[nodiscard]] std::string Where(const YAML::Node& node, const std::string& key_path) const;
   [[nodiscard]] double ToNumber(const YAML::Node& node, const std::string& key_path) const;
+  // The node's number (possibly not finite), or empty when it is not a number.
+  [[nodiscard]] static std::optional<double> ParseNumber(const YAML::Node& node);
   [[nodiscard]] YAML::Node OptionalNonEmptyList(const std::string& key);
 
   YAML::Node node_;

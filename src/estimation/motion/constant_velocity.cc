@@ -2,7 +2,6 @@
 #include "mirage/estimation/motion/constant_velocity.h"
 
 #include <cassert>
-#include <cmath>
 
 #include <Eigen/Core>
 
@@ -10,12 +9,22 @@
 
 namespace mirage::estimation {
 
+const core::OptionsDescriptor<ConstantVelocityOptions>& ConstantVelocityOptionsDescriptor() {
+  static const auto descriptor = [] {
+    core::OptionsDescriptor<ConstantVelocityOptions> d("estimation::ConstantVelocityOptions");
+    d.Number(&ConstantVelocityOptions::accel_sigma_mps2,
+             {.key = "accel_sigma_mps2",
+              .unit = "m/s^2",
+              .range = core::ValueRange::Above(0.0),
+              .doc = "Standard deviation of the white acceleration of the constant-velocity model. 1 m/s^2 is a "
+                     "walking person's typical acceleration; 2 m/s^2 diverges more often in the seminar room."});
+    return d;
+  }();
+  return descriptor;
+}
+
 std::vector<std::string> Validate(const ConstantVelocityOptions& options) {
-  std::vector<std::string> problems;
-  if (!(options.accel_sigma_mps2 > 0.0) || !std::isfinite(options.accel_sigma_mps2)) {
-    problems.push_back("accel_sigma_mps2 must be > 0 m/s^2");
-  }
-  return problems;
+  return ConstantVelocityOptionsDescriptor().Validate(options);
 }
 
 ConstantVelocity::ConstantVelocity(const ConstantVelocityOptions& options, int dimension, int agents)

@@ -13,25 +13,72 @@ constexpr double kMaxSearchCells = 200.0;
 constexpr double kFineGridRatio = 4.0;
 }  // namespace
 
+const core::OptionsDescriptor<RelocalizationOptions>& RelocalizationOptionsDescriptor() {
+  using core::ValueRange;
+  using O = RelocalizationOptions;
+  static const auto descriptor = [] {
+    core::OptionsDescriptor<O> d("methods::mint::RelocalizationOptions");
+    d.Boolean(&O::enabled, {.key = "enabled", .doc = "Detect track loss and relocalize."});
+    d.Number(&O::match_tolerance_m,
+             {.key = "match_tolerance_m",
+              .unit = "m",
+              .range = ValueRange::Above(0.0),
+              .doc = "A VA matches when a measured range lies within this distance of its expected range. 5 cm: "
+                     "about 2 sigma of a first-order reflection's range at 5 dB SINR."});
+    d.Integer(&O::max_order,
+              {.key = "max_order",
+               .range = ValueRange::Closed(0.0, geometry::kMaxVirtualAnchorOrder),
+               .doc = "Highest VA order used for the score. 1: first-order reflections are strong enough to be "
+                      "detected most of the time; second-order ones mostly are not."});
+    d.Integer(&O::min_visible, {.key = "min_visible",
+                                .range = ValueRange::AtLeast(1.0),
+                                .doc = "Minimum number of visible VAs for the score to count."});
+    d.Number(&O::lost_score, {.key = "lost_score",
+                              .range = ValueRange::Closed(0.0, 1.0),
+                              .doc = "Score below which a step counts as lost. 0.4: a tracked agent's 5th "
+                                     "percentile is about 0.55 in the seminar room."});
+    d.Integer(&O::lost_steps, {.key = "lost_steps",
+                               .unit = "steps",
+                               .range = ValueRange::AtLeast(1.0),
+                               .doc = "Consecutive lost steps that trigger a search."});
+    d.Number(&O::search_radius_m, {.key = "search_radius_m",
+                                   .unit = "m",
+                                   .range = ValueRange::Above(0.0),
+                                   .doc = "Half-width of the square searched around the estimate."});
+    d.Number(&O::search_step_m,
+             {.key = "search_step_m",
+              .unit = "m",
+              .range = ValueRange::Above(0.0),
+              .doc = "Coarse grid step; the best coarse cell is refined on a grid 4 times finer."});
+    d.Number(&O::found_score, {.key = "found_score",
+                               .range = ValueRange::Closed(0.0, 1.0),
+                               .doc = "Score the best position must reach to be accepted."});
+    d.Check("search_step_m <= search_radius_m <= 200 * search_step_m (a coarse grid of at most 401 x 401 points)",
+            [](const O& o) -> std::vector<std::string> {
+              // Out-of-range values are reported by their own fields.
+              if (!ValueRange::Above(0.0).Contains(o.search_step_m) ||
+                  !ValueRange::Above(0.0).Contains(o.search_radius_m)) {
+                return {};
+              }
+              const std::string step = core::FormatNumber(o.search_step_m) + " m";
+              const std::string radius = core::FormatNumber(o.search_radius_m) + " m";
+              if (o.search_step_m > o.search_radius_m) {
+                return {"search_step_m: " + step + " must be <= search_radius_m (" + radius + ")"};
+              }
+              if (o.search_radius_m / o.search_step_m > kMaxSearchCells) {
+                return {"search_step_m: " + step + " must be at least search_radius_m / " +
+                        std::to_string(static_cast<int>(kMaxSearchCells)) + " (" +
+                        core::FormatNumber(o.search_radius_m / kMaxSearchCells) + " m)"};
+              }
+              return {};
+            });
+    return d;
+  }();
+  return descriptor;
+}
+
 std::vector<std::string> Validate(const RelocalizationOptions& options) {
-  std::vector<std::string> problems;
-  if (!(options.match_tolerance_m > 0.0) || !std::isfinite(options.match_tolerance_m)) problems.push_back("match_tolerance_m must be > 0 m");
-  if (options.max_order < 0 || options.max_order > geometry::kMaxVirtualAnchorOrder) {
-    problems.push_back("max_order must be in [0, " + std::to_string(geometry::kMaxVirtualAnchorOrder) + "]");
-  }
-  if (options.min_visible < 1) problems.push_back("min_visible must be >= 1");
-  if (!(options.lost_score >= 0.0 && options.lost_score <= 1.0)) problems.push_back("lost_score must be in [0, 1]");
-  if (options.lost_steps < 1) problems.push_back("lost_steps must be >= 1");
-  if (!(options.search_radius_m > 0.0) || !std::isfinite(options.search_radius_m)) {
-    problems.push_back("search_radius_m must be > 0 m");
-  }
-  if (!(options.search_step_m > 0.0) || !(options.search_step_m <= options.search_radius_m)) {
-    problems.push_back("search_step_m must be > 0 m and <= search_radius_m");
-  } else if (options.search_radius_m / options.search_step_m > kMaxSearchCells) {
-    problems.push_back("search_step_m must be at least search_radius_m / " + std::to_string(static_cast<int>(kMaxSearchCells)));
-  }
-  if (!(options.found_score >= 0.0 && options.found_score <= 1.0)) problems.push_back("found_score must be in [0, 1]");
-  return problems;
+  return RelocalizationOptionsDescriptor().Validate(options);
 }
 
 MatchScore ScorePosition(const geometry::VirtualAnchorSet& vas, const geometry::FloorPlan& plan, const Vec2& p_m,

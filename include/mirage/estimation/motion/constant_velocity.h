@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "mirage/core/options_descriptor.h"
 #include "mirage/estimation/motion/propagator.h"
 #include "mirage/estimation/state.h"
 
@@ -23,7 +24,10 @@ struct ConstantVelocityOptions {
   double accel_sigma_mps2 = 1.0;
 };
 
-/// Problems with the options, empty if valid.
+/// The options' descriptor (keys, units, ranges, docs; core/options_descriptor.h).
+const core::OptionsDescriptor<ConstantVelocityOptions>& ConstantVelocityOptionsDescriptor();
+
+/// Problems with the options ("key: message"), empty if valid; see the descriptor.
 std::vector<std::string> Validate(const ConstantVelocityOptions& options);
 
 /// The constant-velocity model of agents 0 .. agents-1, whose position and velocity blocks are

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "mirage/core/measurements.h"
+#include "mirage/core/options_descriptor.h"
 #include "mirage/core/types.h"
 #include "mirage/geometry/floor_plan.h"
 #include "mirage/geometry/virtual_anchor.h"
@@ -44,7 +45,11 @@ struct RelocalizationOptions {
   double found_score = 0.6;
 };
 
-/// Problems with the options, empty if valid.
+/// The options' descriptor (keys, units, ranges, docs, the search-grid check;
+/// core/options_descriptor.h).
+const core::OptionsDescriptor<RelocalizationOptions>& RelocalizationOptionsDescriptor();
+
+/// Problems with the options ("key: message"), empty if valid; see the descriptor.
 std::vector<std::string> Validate(const RelocalizationOptions& options);
 
 /// Matched and visible counts of a position.
