@@ -46,6 +46,16 @@ TEST(ValueRange, ContainsRespectsOpenAndClosedEndsAndRejectsNonFiniteValues) {
   EXPECT_TRUE(ValueRange::Finite().Contains(-1e300));
 }
 
+TEST(ValueRange, PositiveAndNonNegativeStopAtTheSanityBound) {
+  EXPECT_FALSE(ValueRange::Positive().Contains(0.0));
+  EXPECT_TRUE(ValueRange::Positive().Contains(kTinyOption));
+  EXPECT_TRUE(ValueRange::Positive().Contains(kHugeOption));
+  EXPECT_FALSE(ValueRange::Positive().Contains(2.0 * kHugeOption));
+  EXPECT_TRUE(ValueRange::NonNegative().Contains(0.0));
+  EXPECT_FALSE(ValueRange::NonNegative().Contains(-kTinyOption));
+  EXPECT_EQ(ValueRange::NonNegative().Text("m"), "[0, 1e+09] m");
+}
+
 TEST(FormatNumber, GivesTheShortestTextThatReadsBackToTheSameDouble) {
   EXPECT_EQ(FormatNumber(0.1), "0.1");
   EXPECT_EQ(FormatNumber(128e-9), "1.28e-07");

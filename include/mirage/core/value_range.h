@@ -8,6 +8,14 @@
 
 namespace mirage::core {
 
+/// Upper bound of options that only have to be positive or non-negative (lengths, times,
+/// standard deviations): large enough for any room, small enough that products of two such values
+/// stay finite. The scenario readers' limit since the first loader (io's kHuge).
+inline constexpr double kHugeOption = 1e9;
+/// Lower bound of such options that must be positive: far below any meaningful length, time or
+/// standard deviation, it keeps their squares and reciprocals finite.
+inline constexpr double kTinyOption = 1e-9;
+
 /// One end of a ValueRange.
 struct RangeBound {
   double value = 0.0;
@@ -38,6 +46,10 @@ struct ValueRange {
   static ValueRange RightOpen(double lo, double hi) { return {RangeBound{lo, true}, RangeBound{hi, false}}; }
   /// (lo, hi).
   static ValueRange Open(double lo, double hi) { return {RangeBound{lo, false}, RangeBound{hi, false}}; }
+  /// [kTinyOption, kHugeOption]: a value that only has to be positive.
+  static ValueRange Positive() { return Closed(kTinyOption, kHugeOption); }
+  /// [0, kHugeOption]: a value that only has to be non-negative.
+  static ValueRange NonNegative() { return Closed(0.0, kHugeOption); }
 
   /// True if value is finite and inside the range.
   [[nodiscard]] bool Contains(double value) const;
