@@ -34,17 +34,30 @@ double Simpson(const G& g, double b, int n) {
 
 }  // namespace
 
-std::vector<std::string> Validate(const PulseOptions& options) {
-  std::vector<std::string> problems;
-  if (!(options.carrier_hz > 0.0) || !std::isfinite(options.carrier_hz)) {
-    problems.push_back("carrier_hz must be > 0 Hz");
-  }
-  if (!(options.rolloff >= 0.0 && options.rolloff <= 1.0)) problems.push_back("rolloff must be in [0, 1]");
-  if (!(options.duration_s > 0.0) || !std::isfinite(options.duration_s)) {
-    problems.push_back("duration_s must be > 0 s");
-  }
-  return problems;
+const core::OptionsDescriptor<PulseOptions>& PulseOptionsDescriptor() {
+  using core::ValueRange;
+  using O = PulseOptions;
+  static const auto descriptor = [] {
+    core::OptionsDescriptor<O> d("channel::PulseOptions");
+    d.Number(&O::carrier_hz, {.key = "carrier_hz",
+                              .unit = "Hz",
+                              .range = ValueRange::Closed(1.0, 1e12),
+                              .doc = "Carrier (centre) frequency f_c of the raised-cosine pulse. 7 GHz as in Lafer "
+                                     "Tab. 3.1."});
+    d.Number(&O::rolloff, {.key = "rolloff",
+                           .range = ValueRange::Closed(0.0, 1.0),
+                           .doc = "Roll-off factor beta_R of the raised-cosine pulse. 0.5 as in Lafer Tab. 3.1."});
+    d.Number(&O::duration_s, {.key = "duration_s",
+                              .unit = "s",
+                              .range = ValueRange::Closed(1e-12, 1e-3),
+                              .doc = "Pulse duration T_p; the bandwidth is (1 + beta_R) / T_p. 0.5 ns as in Lafer "
+                                     "Tab. 3.1."});
+    return d;
+  }();
+  return descriptor;
 }
+
+std::vector<std::string> Validate(const PulseOptions& options) { return PulseOptionsDescriptor().Validate(options); }
 
 int PulseTailSamples(const PulseOptions& options, double sample_period_s) {
   return static_cast<int>(std::ceil(kPulseTailDurations * options.duration_s / sample_period_s));

@@ -8,18 +8,42 @@
 
 namespace mirage::channel {
 
-std::vector<std::string> Validate(const RangeLevelOptions& o) {
-  std::vector<std::string> problems;
-  if (!(o.detection_probability >= 0.0 && o.detection_probability <= 1.0)) {
-    problems.push_back("detection_probability must be in [0, 1]");
-  }
-  if (!(o.clutter_rate >= 0.0) || !std::isfinite(o.clutter_rate)) problems.push_back("clutter_rate must be >= 0");
-  if (!std::isfinite(o.min_sinr_db)) problems.push_back("min_sinr_db must be finite");
-  if (!(o.resolution_m >= 0.0) || !std::isfinite(o.resolution_m)) problems.push_back("resolution_m must be >= 0 m");
-  if (!(o.max_range_sigma_m > 0.0) || !std::isfinite(o.max_range_sigma_m)) {
-    problems.push_back("max_range_sigma_m must be > 0 m");
-  }
-  return problems;
+const core::OptionsDescriptor<RangeLevelOptions>& RangeLevelOptionsDescriptor() {
+  using core::ValueRange;
+  using O = RangeLevelOptions;
+  static const auto descriptor = [] {
+    core::OptionsDescriptor<O> d("channel::RangeLevelOptions");
+    d.Number(&O::detection_probability,
+             {.key = "detection_probability",
+              .range = ValueRange::Closed(0.0, 1.0),
+              .doc = "Probability that a path above min_sinr_db is detected. 0.95 (issue 4)."});
+    d.Number(&O::clutter_rate, {.key = "clutter_rate",
+                                .range = ValueRange::Closed(0.0, 1000.0),
+                                .doc = "Mean number of clutter ranges per anchor and step (Poisson), uniform over "
+                                       "the CIR window. 1 (issue 4)."});
+    d.Number(&O::min_sinr_db, {.key = "min_sinr_db",
+                               .unit = "dB",
+                               .range = ValueRange::Closed(-200.0, 200.0),
+                               .doc = "Paths below this true SINR are never detected. -10 dB: below it a path's "
+                                      "matched-filter peak is lost in the diffuse multipath."});
+    d.Number(&O::resolution_m,
+             {.key = "resolution_m",
+              .unit = "m",
+              .range = ValueRange::NonNegative(),
+              .doc = "Detected paths closer than this merge into one range. 7.5 cm, half the pulse "
+                     "length c T_p / 2 at T_p = 0.5 ns, where two pulses stop being separate peaks."});
+    d.Number(&O::max_range_sigma_m, {.key = "max_range_sigma_m",
+                                     .unit = "m",
+                                     .range = ValueRange::Positive(),
+                                     .doc = "Cap on the CRLB range standard deviation: sigma_VA,max = 0.22 m of Lafer "
+                                            "2014."});
+    return d;
+  }();
+  return descriptor;
+}
+
+std::vector<std::string> Validate(const RangeLevelOptions& options) {
+  return RangeLevelOptionsDescriptor().Validate(options);
 }
 
 RangeLevelSimulator::RangeLevelSimulator(const RangeLevelOptions& options, const CirSynthesizer& synthesizer)

@@ -1,19 +1,35 @@
 // SPDX-License-Identifier: MIT
 #include "mirage/channel/ranging_simulator.h"
 
-#include <cmath>
-
 namespace mirage::channel {
 
-std::vector<std::string> Validate(const RangingOptions& o) {
-  std::vector<std::string> problems;
-  if (!(o.range_sigma_m > 0.0) || !std::isfinite(o.range_sigma_m)) problems.push_back("range_sigma_m must be > 0 m");
-  if (!(o.detection_probability >= 0.0 && o.detection_probability <= 1.0)) {
-    problems.push_back("detection_probability must be in [0, 1]");
-  }
-  if (!(o.clutter_rate >= 0.0) || !std::isfinite(o.clutter_rate)) problems.push_back("clutter_rate must be >= 0");
-  if (!(o.max_range_m > 0.0) || !std::isfinite(o.max_range_m)) problems.push_back("max_range_m must be > 0 m");
-  return problems;
+const core::OptionsDescriptor<RangingOptions>& RangingOptionsDescriptor() {
+  using core::ValueRange;
+  using O = RangingOptions;
+  static const auto descriptor = [] {
+    core::OptionsDescriptor<O> d("channel::RangingOptions");
+    d.Number(&O::range_sigma_m, {.key = "range_sigma_m",
+                                 .unit = "m",
+                                 .range = ValueRange::Above(0.0),
+                                 .doc = "Standard deviation of a range. 0.1 m, typical of UWB two-way ranging."});
+    d.Number(&O::detection_probability,
+             {.key = "detection_probability",
+              .range = ValueRange::Closed(0.0, 1.0),
+              .doc = "Probability that an anchor's range arrives at an epoch. 1: every one does."});
+    d.Number(&O::clutter_rate, {.key = "clutter_rate",
+                                .range = ValueRange::AtLeast(0.0),
+                                .doc = "Mean number of clutter ranges per anchor and epoch (Poisson). 0: no clutter."});
+    d.Number(&O::max_range_m, {.key = "max_range_m",
+                               .unit = "m",
+                               .range = ValueRange::Above(0.0),
+                               .doc = "Clutter ranges are uniform on [0, max_range_m]."});
+    return d;
+  }();
+  return descriptor;
+}
+
+std::vector<std::string> Validate(const RangingOptions& options) {
+  return RangingOptionsDescriptor().Validate(options);
 }
 
 std::vector<core::RangeMeasurement> SimulateRanging(const RangingOptions& options, double true_range_m, core::Rng& rng) {

@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include "core/options_descriptor_expectations.h"
 #include "mirage/core/constants.h"
 #include "mirage/core/rng.h"
 
@@ -334,6 +335,36 @@ TEST(CirSynthesizer, ValidateRejectsBadWindowSnrAndSubOptions) {
   ASSERT_EQ(problems.size(), 2u);
   EXPECT_EQ(problems[0].rfind("pulse.", 0), 0u);
   EXPECT_EQ(problems[1].rfind("diffuse.", 0), 0u);
+}
+
+TEST(ChannelOptionsDescriptor, AcceptsTheDefaultsAndDescribesEveryMemberButTheMedium) {
+  test::ExpectDescribesEveryMember(ChannelOptionsDescriptor(), {"pulse", "diffuse", "sample_period_s", "window_start_s",
+                                                                "window_length_s", "snr_at_1m_db"});
+  EXPECT_EQ(ChannelOptionsDescriptor().Find("medium"), nullptr);
+}
+
+TEST(ChannelOptionsDescriptor, LeavesTheChecksAgainstThePulseToValidate) {
+  // A cooperative scenario sets the pulse duration per variant after reading the section.
+  ChannelOptions options;
+  options.sample_period_s = 0.34e-9;  // above the 0.333 ns Nyquist limit of the 0.5 ns pulse
+  EXPECT_TRUE(ChannelOptionsDescriptor().Validate(options).empty());
+  ASSERT_EQ(Validate(options).size(), 1u);
+  EXPECT_EQ(Validate(options)[0].rfind("sample_period_s must be at most", 0), 0u);
+  options = ChannelOptions{};
+  options.window_length_s = 2e-9;  // 4 pulse durations
+  EXPECT_TRUE(ChannelOptionsDescriptor().Validate(options).empty());
+  EXPECT_EQ(Validate(options).size(), 1u);
+}
+
+TEST(ChannelOptionsDescriptor, BlamesTheSamplePeriodForTooManySamplesPerCir) {
+  ChannelOptions options;
+  options.sample_period_s = 1e-15;
+
+  const auto problems = ChannelOptionsDescriptor().Validate(options);
+
+  ASSERT_EQ(problems.size(), 1u);
+  EXPECT_EQ(problems[0].rfind("sample_period_s: 1e-15 s must be at least window_length_s / 1e+06", 0), 0u)
+      << problems[0];
 }
 
 }  // namespace

@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: MIT
+#include "core/options_descriptor_expectations.h"
 #include "mirage/channel/diffuse_multipath.h"
 
 #include <cmath>
@@ -114,6 +115,18 @@ TEST(DiffuseOptions, ValidateAcceptsTheDefaultsAndRejectsBadOptions) {
   power.power_ratio_db = inf;
   EXPECT_EQ(Validate(power).size(), 1u);
   EXPECT_EQ(Validate(Options(-1.0, 0.0, 2.0)).size(), 3u);
+}
+
+TEST(DiffuseOptionsDescriptor, AcceptsTheDefaultsAndDescribesEveryMember) {
+  test::ExpectDescribesEveryMember(DiffuseOptionsDescriptor(),
+                                   {"enabled", "power_ratio_db", "decay_s", "rise_s", "rise_weight"});
+}
+
+TEST(DiffuseOptions, ValidateNamesTheKeyTheValueAndTheRange) {
+  DiffuseOptions options;
+  options.decay_s = 0.0;
+  EXPECT_EQ(Validate(options),
+            std::vector<std::string>{"decay_s: 0 s is out of range, expected a number in [1e-12, 1] s"});
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include "core/options_descriptor_expectations.h"
 #include "mirage/core/constants.h"
 
 namespace mirage::channel {
@@ -235,6 +236,16 @@ TEST(RaisedCosinePulse, ValidateAcceptsTheDefaultsAndRejectsBadOptions) {
   all_bad.rolloff = 2.0;
   all_bad.duration_s = 0.0;
   EXPECT_EQ(Validate(all_bad).size(), 3u);
+}
+
+TEST(PulseOptionsDescriptor, AcceptsTheDefaultsAndDescribesEveryMember) {
+  test::ExpectDescribesEveryMember(PulseOptionsDescriptor(), {"carrier_hz", "rolloff", "duration_s"});
+}
+
+TEST(PulseOptions, ValidateNamesTheKeyTheValueAndTheRange) {
+  EXPECT_EQ(Validate(Options(0.5e-9, 1.5)),
+            std::vector<std::string>{"rolloff: 1.5 is out of range, expected a number in [0, 1]"});
+  EXPECT_EQ(Validate(Options(0.0)).size(), 1u);
 }
 
 }  // namespace

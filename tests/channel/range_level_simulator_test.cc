@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include "core/options_descriptor_expectations.h"
 #include "mirage/core/constants.h"
 
 namespace mirage::channel {
@@ -119,6 +120,11 @@ TEST(RangeLevelSimulator, ValidateNamesTheBadOption) {
   const auto problems = Validate(o);
   ASSERT_EQ(problems.size(), 1u);
   EXPECT_EQ(problems[0].rfind("detection_probability", 0), 0u);
+}
+
+TEST(RangeLevelOptionsDescriptor, AcceptsTheDefaultsAndDescribesEveryMember) {
+  test::ExpectDescribesEveryMember(RangeLevelOptionsDescriptor(), {"detection_probability", "clutter_rate",
+                                                                   "min_sinr_db", "resolution_m", "max_range_sigma_m"});
 }
 
 }  // namespace

@@ -18,6 +18,7 @@
 #include "mirage/core/fft.h"
 #include "mirage/core/measurements.h"
 #include "mirage/core/medium.h"
+#include "mirage/core/options_descriptor.h"
 #include "mirage/core/rng.h"
 
 namespace mirage::channel {
@@ -31,19 +32,30 @@ struct ChannelOptions {
   PulseOptions pulse;
   /// Diffuse multipath.
   DiffuseOptions diffuse;
-  /// Sample period T_s (s), > 0 and below the Nyquist limit 1 / (2 band edge). 0.125 ns, close
-  /// to the thesis's 0.133 ns synthetic grid.
+  /// Sample period T_s (s), in [1e-15, 1e-3], below the Nyquist limit 1 / (2 band edge) and at
+  /// least window_length_s / 1e6 and pulse.duration_s / 1000. 0.125 ns, close to the thesis's
+  /// 0.133 ns synthetic grid.
   double sample_period_s = 0.125e-9;
-  /// Delay of the first sample (s), >= 0. Anchors and agent are synchronised (ToA), so 0.
+  /// Delay of the first sample (s), in [0, 1]. Anchors and agent are synchronised (ToA), so 0.
   double window_start_s = 0.0;
-  /// Length of the CIR window (s), > 0. 128 ns covers second-order paths in a 9 m room.
+  /// Length of the CIR window (s), in [1e-12, 1] and at least 8 pulse durations. 128 ns covers
+  /// second-order paths in a 9 m room.
   double window_length_s = 128e-9;
-  /// SNR of an unobstructed LOS at 1 m: LOS energy over N0 (dB). 35 dB gives a LOS SNR of about
-  /// 25 dB at 3 m, typical of the thesis's measured seminar-room channels.
+  /// SNR of an unobstructed LOS at 1 m: LOS energy over N0 (dB), in [-100, 200]. 35 dB gives a LOS
+  /// SNR of about 25 dB at 3 m, typical of the thesis's measured seminar-room channels.
   double snr_at_1m_db = 35.0;
 };
 
-/// Problems with the options, empty if valid.
+/// The options' descriptor (keys, units, ranges, docs, the samples-per-CIR check;
+/// core/options_descriptor.h). `medium` is no key: the scenario schema cannot name a medium yet.
+/// The checks that involve the pulse duration are not in it, as a cooperative scenario sets the
+/// duration per variant after reading the section: see Validate().
+const core::OptionsDescriptor<ChannelOptions>& ChannelOptionsDescriptor();
+
+/// Problems with the options, empty if valid: the descriptor's ("key: message"), then the medium's
+/// speed and, with everything else valid, the checks against the pulse ("key must ..."): the
+/// Nyquist limit of sample_period_s, at most 1000 samples per pulse duration and a window of at
+/// least 8 pulse durations.
 std::vector<std::string> Validate(const ChannelOptions& options);
 
 /// Ground truth of one specular path in a synthesised CIR.

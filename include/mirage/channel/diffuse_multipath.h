@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "mirage/core/options_descriptor.h"
+
 namespace mirage::channel {
 
 /// Parameters of the DM power delay profile S_nu(tau).
@@ -15,18 +17,21 @@ struct DiffuseOptions {
   /// Whether DM is simulated at all.
   bool enabled = true;
   /// Total DM energy relative to the free-space LOS energy at the LOS distance (dB), i.e. the
-  /// inverse of a K-factor. 0 dB puts first-order reflections at about -5 ... +10 dB SINR and the
-  /// LOS at 20-30 dB at 3 m, the range measured UWB channels show.
+  /// inverse of a K-factor, in [-200, 100]. 0 dB puts first-order reflections at about -5 ... +10
+  /// dB SINR and the LOS at 20-30 dB at 3 m, the range measured UWB channels show.
   double power_ratio_db = 0.0;
-  /// Decay time constant gamma_1 (s), > 0. 20 ns, typical indoor office.
+  /// Decay time constant gamma_1 (s), in [1e-12, 1]. 20 ns, typical indoor office.
   double decay_s = 20e-9;
-  /// Rise time constant gamma_rise (s), > 0. 5 ns.
+  /// Rise time constant gamma_rise (s), in [1e-12, 1]. 5 ns.
   double rise_s = 5e-9;
   /// Rise weight chi in [0, 1]: 0 means an instantaneous start, 1 a PDP that starts at zero.
   double rise_weight = 0.98;
 };
 
-/// Problems with the options, empty if valid.
+/// The options' descriptor (keys, units, ranges, docs; core/options_descriptor.h).
+const core::OptionsDescriptor<DiffuseOptions>& DiffuseOptionsDescriptor();
+
+/// Problems with the options ("key: message"), empty if valid; see the descriptor.
 std::vector<std::string> Validate(const DiffuseOptions& options);
 
 /// Unit-area PDP shape at excess delay tau - tau_LOS (1/s):

@@ -7,19 +7,25 @@
 #include <string>
 #include <vector>
 
+#include "mirage/core/options_descriptor.h"
+
 namespace mirage::channel {
 
 /// Parameters of the RC pulse.
 struct PulseOptions {
-  /// Carrier (centre) frequency f_c (Hz), > 0. 7 GHz as in Lafer 2014 Tab. 3.1.
+  /// Carrier (centre) frequency f_c (Hz), in [1, 1e12]. 7 GHz as in Lafer 2014 Tab. 3.1.
   double carrier_hz = 7.0e9;
   /// Roll-off factor beta_R, in [0, 1]. 0.5 as in Lafer 2014 Tab. 3.1.
   double rolloff = 0.5;
-  /// Pulse duration T_p (s), > 0; the bandwidth is (1 + beta_R) / T_p. 0.5 ns as in Tab. 3.1.
+  /// Pulse duration T_p (s), in [1e-12, 1e-3]; the bandwidth is (1 + beta_R) / T_p. 0.5 ns as in
+  /// Tab. 3.1.
   double duration_s = 0.5e-9;
 };
 
-/// Problems with the options, empty if valid.
+/// The options' descriptor (keys, units, ranges, docs; core/options_descriptor.h).
+const core::OptionsDescriptor<PulseOptions>& PulseOptionsDescriptor();
+
+/// Problems with the options ("key: message"), empty if valid; see the descriptor.
 std::vector<std::string> Validate(const PulseOptions& options);
 
 /// The RC pulse's tails fall below 1e-6 of its peak within this many pulse durations; zero

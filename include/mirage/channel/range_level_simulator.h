@@ -16,6 +16,7 @@
 #include "mirage/channel/cir_synthesizer.h"
 #include "mirage/channel/specular_path.h"
 #include "mirage/core/measurements.h"
+#include "mirage/core/options_descriptor.h"
 #include "mirage/core/rng.h"
 
 namespace mirage::channel {
@@ -24,19 +25,22 @@ namespace mirage::channel {
 struct RangeLevelOptions {
   /// Probability that a path above min_sinr_db is detected, in [0, 1]. 0.95 (issue 4).
   double detection_probability = 0.95;
-  /// Mean number of clutter ranges per anchor and step (Poisson), >= 0. 1 (issue 4).
+  /// Mean number of clutter ranges per anchor and step (Poisson), in [0, 1000]. 1 (issue 4).
   double clutter_rate = 1.0;
-  /// Paths below this true SINR are never detected (dB). -10 dB: at lower SINR the matched-filter
-  /// peak of a path is lost in the diffuse multipath.
+  /// Paths below this true SINR are never detected (dB), in [-200, 200]. -10 dB: at lower SINR the
+  /// matched-filter peak of a path is lost in the diffuse multipath.
   double min_sinr_db = -10.0;
-  /// Detected paths closer than this merge into one range (m), >= 0: half the pulse length
+  /// Detected paths closer than this merge into one range (m), in [0, 1e9]: half the pulse length
   /// c T_p / 2 = 7.5 cm at T_p = 0.5 ns, where two pulses are no longer separate peaks.
   double resolution_m = 0.075;
-  /// Cap on the range standard deviation (m), > 0: sigma_VA,max = 0.22 m of Lafer 2014.
+  /// Cap on the range standard deviation (m), in [1e-9, 1e9]: sigma_VA,max = 0.22 m of Lafer 2014.
   double max_range_sigma_m = 0.22;
 };
 
-/// Problems with the options, empty if valid.
+/// The options' descriptor (keys, units, ranges, docs; core/options_descriptor.h).
+const core::OptionsDescriptor<RangeLevelOptions>& RangeLevelOptionsDescriptor();
+
+/// Problems with the options ("key: message"), empty if valid; see the descriptor.
 std::vector<std::string> Validate(const RangeLevelOptions& options);
 
 /// Draws range measurements; immutable, one instance serves several threads.

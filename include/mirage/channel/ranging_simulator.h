@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "mirage/core/options_descriptor.h"
 #include "mirage/core/records.h"
 #include "mirage/core/rng.h"
 
@@ -27,7 +28,10 @@ struct RangingOptions {
   double max_range_m = 30.0;
 };
 
-/// Problems with the options, empty if valid.
+/// The options' descriptor (keys, units, ranges, docs; core/options_descriptor.h).
+const core::OptionsDescriptor<RangingOptions>& RangingOptionsDescriptor();
+
+/// Problems with the options ("key: message"), empty if valid; see the descriptor.
 std::vector<std::string> Validate(const RangingOptions& options);
 
 /// The ranges of one anchor at one epoch: the true distance plus noise if detected, then the
