@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include "core/options_descriptor_expectations.h"
 #include "mirage/channel/cir_synthesizer.h"
 #include "mirage/core/constants.h"
 #include "mirage/core/rng.h"
@@ -272,6 +273,11 @@ TEST(MpcExtractor, ValidateAcceptsTheDefaultsAndRejectsBadOptions) {
   EXPECT_EQ(Validate(Extraction(true, 20, std::numeric_limits<double>::quiet_NaN())).size(), 1u);
   EXPECT_EQ(Validate(Extraction(true, 20, -std::numeric_limits<double>::infinity())).size(), 1u);
   EXPECT_EQ(Validate(Extraction(true, -5, 1.0)).size(), 2u);
+}
+
+TEST(MpcExtractorOptionsDescriptor, AcceptsTheDefaultsAndDescribesEveryMember) {
+  test::ExpectDescribesEveryMember(MpcExtractorOptionsDescriptor(),
+                                   {"max_components", "relative_threshold_db", "readjust"});
 }
 
 }  // namespace

@@ -18,25 +18,29 @@
 #include "mirage/core/fft.h"
 #include "mirage/core/measurements.h"
 #include "mirage/core/medium.h"
+#include "mirage/core/options_descriptor.h"
 #include "mirage/core/types.h"
 
 namespace mirage::dsp {
 
 /// Parameters of the extraction.
 struct MpcExtractorOptions {
-  /// Maximum number of components K (>= 1). 20 as in Lafer 2014 Tab. 3.1.
+  /// Maximum number of components K, in [1, 1000]. 20 as in Lafer 2014 Tab. 3.1.
   int max_components = 20;
-  /// Stop when a component's energy falls this far below the strongest one (dB, < 0). The thesis
-  /// only says the threshold is relative [GAP]. -30 dB is below the noise floor of a 20-35 dB LOS,
-  /// so with the defaults the extraction usually runs to max_components and its last components
-  /// are diffuse-multipath and noise peaks: clutter the association has to reject, as with the
-  /// thesis's measured data (Sec. 3.3: "Z typically also contains spurious ranges").
+  /// Stop when a component's energy falls this far below the strongest one (dB), in [-300, -1e-9].
+  /// The thesis only says the threshold is relative [GAP]. -30 dB is below the noise floor of a
+  /// 20-35 dB LOS, so with the defaults the extraction usually runs to max_components and its last
+  /// components are diffuse-multipath and noise peaks: clutter the association has to reject, as
+  /// with the thesis's measured data (Sec. 3.3: "Z typically also contains spurious ranges").
   double relative_threshold_db = -30.0;
   /// Re-estimate overlapping earlier components after each new one.
   bool readjust = true;
 };
 
-/// Problems with the options, empty if valid.
+/// The options' descriptor (keys, units, ranges, docs; core/options_descriptor.h).
+const core::OptionsDescriptor<MpcExtractorOptions>& MpcExtractorOptionsDescriptor();
+
+/// Problems with the options ("key: message"), empty if valid; see the descriptor.
 std::vector<std::string> Validate(const MpcExtractorOptions& options);
 
 /// One extracted component.
