@@ -7,24 +7,79 @@
 
 namespace mirage::estimation {
 
+namespace {
+
+// "key: value m must be <relation> other (value m)" when both lengths are in their ranges and
+// `holds` is false; empty otherwise (an out-of-range value is reported by its own field).
+std::vector<std::string> CompareLengths(const std::string& key, double value_m, const char* relation,
+                                        const std::string& other, double other_m, const core::ValueRange& range,
+                                        bool holds) {
+  if (holds || !range.Contains(value_m) || !range.Contains(other_m)) return {};
+  return {key + ": " + core::FormatNumber(value_m) + " m must be " + relation + " " + other + " (" +
+          core::FormatNumber(other_m) + " m)"};
+}
+
+}  // namespace
+
+const core::OptionsDescriptor<RangeVarianceOptions>& RangeVarianceOptionsDescriptor() {
+  using core::ValueRange;
+  using O = RangeVarianceOptions;
+  static const auto descriptor = [] {
+    const ValueRange window_range = ValueRange::Closed(1e-6, core::kHugeOption);
+    core::OptionsDescriptor<O> d("estimation::RangeVarianceOptions");
+    d.Boolean(&O::enabled, {.key = "enabled",
+                            .doc = "Estimate each source's range variance online (Lafer Sec. 3.6); off, every range "
+                                   "gets the method's fixed standard deviation."});
+    d.Number(&O::window_min_m, {.key = "window_min_m",
+                                .unit = "m",
+                                .range = window_range,
+                                .doc = "Minimum spatial extent d_min of the amplitude window, against correlated "
+                                       "samples. 0.9 m (Lafer Tab. 3.2)."});
+    d.Number(&O::window_max_m, {.key = "window_max_m",
+                                .unit = "m",
+                                .range = window_range,
+                                .doc = "Maximum spatial extent d_max of the amplitude window, which keeps the channel "
+                                       "stationary. 1.0 m (Lafer Tab. 3.2)."});
+    d.Integer(&O::min_samples, {.key = "min_samples",
+                                .range = ValueRange::Closed(3.0, 1e6),
+                                .doc = "Minimum number of amplitudes N_min in the window. 15 (Lafer Tab. 3.2)."});
+    d.Number(&O::default_sigma_m,
+             {.key = "default_sigma_m",
+              .unit = "m",
+              .range = ValueRange::Positive(),
+              .doc = "Range standard deviation sigma_VA before any estimate. 0.07 m (Lafer's text; "
+                     "Tab. 3.2 misprints it as 0.07 m^2)."});
+    d.Number(&O::max_variance_factor, {.key = "max_variance_factor",
+                                       .range = ValueRange::Closed(1.0, core::kHugeOption),
+                                       .doc = "sigma_VA,max^2 = factor * sigma_VA^2 for an SINR estimate of zero or a "
+                                              "complex one. 10 (Lafer Tab. 3.2)."});
+    d.Number(&O::min_sigma_m, {.key = "min_sigma_m",
+                               .unit = "m",
+                               .range = ValueRange::Positive(),
+                               .doc = "Floor of the estimated standard deviation (a gap in the thesis): Var[Y] -> 0 "
+                                      "would give zero variance. 1 cm, about the delay error model mismatch leaves at "
+                                      "high SINR."});
+    d.Number(&O::overlap_distance_m,
+             {.key = "overlap_distance_m",
+              .unit = "m",
+              .range = ValueRange::NonNegative(),
+              .doc = "Two expected ranges closer than this overlap, and their samples are discarded: Lafer Eq. (3.25) "
+                     "does not hold for them (the thesis gives no criterion). 0.15 m is c T_p at T_p = 0.5 ns."});
+    d.Check("window_max_m >= window_min_m", [=](const O& o) {
+      return CompareLengths("window_max_m", o.window_max_m, ">=", "window_min_m", o.window_min_m, window_range,
+                            o.window_max_m >= o.window_min_m);
+    });
+    d.Check("min_sigma_m <= default_sigma_m", [](const O& o) {
+      return CompareLengths("min_sigma_m", o.min_sigma_m, "<=", "default_sigma_m", o.default_sigma_m,
+                            ValueRange::Positive(), o.min_sigma_m <= o.default_sigma_m);
+    });
+    return d;
+  }();
+  return descriptor;
+}
+
 std::vector<std::string> Validate(const RangeVarianceOptions& options) {
-  std::vector<std::string> problems;
-  if (!(options.window_min_m > 0.0) || !std::isfinite(options.window_min_m)) problems.push_back("window_min_m must be > 0 m");
-  if (!(options.window_max_m >= options.window_min_m) || !std::isfinite(options.window_max_m)) {
-    problems.push_back("window_max_m must be >= window_min_m");
-  }
-  if (options.min_samples < 3) problems.push_back("min_samples must be >= 3");
-  if (!(options.default_sigma_m > 0.0) || !std::isfinite(options.default_sigma_m)) problems.push_back("default_sigma_m must be > 0 m");
-  if (!(options.max_variance_factor >= 1.0) || !std::isfinite(options.max_variance_factor)) {
-    problems.push_back("max_variance_factor must be >= 1");
-  }
-  if (!(options.min_sigma_m > 0.0) || !(options.min_sigma_m <= options.default_sigma_m)) {
-    problems.push_back("min_sigma_m must be > 0 m and <= default_sigma_m");
-  }
-  if (!(options.overlap_distance_m >= 0.0) || !std::isfinite(options.overlap_distance_m)) {
-    problems.push_back("overlap_distance_m must be >= 0 m");
-  }
-  return problems;
+  return RangeVarianceOptionsDescriptor().Validate(options);
 }
 
 RangeVarianceEstimator::RangeVarianceEstimator(const RangeVarianceOptions& options, double range_sigma_at_unit_sinr_m)

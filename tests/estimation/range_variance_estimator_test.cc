@@ -11,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include "core/options_descriptor_expectations.h"
 #include "mirage/core/rng.h"
 
 namespace mirage::estimation {
@@ -384,6 +385,21 @@ TEST(RangeVarianceOptions, NamesEveryInvalidField) {
   EXPECT_TRUE(Mentions(with([](auto& o) { o.min_sigma_m = 0.08; }), "min_sigma_m"));
   EXPECT_TRUE(Mentions(with([](auto& o) { o.overlap_distance_m = -1.0; }), "overlap_distance_m"));
   EXPECT_EQ(with([](auto& o) { o.window_max_m = 0.5; }).size(), 1u);
+}
+
+TEST(RangeVarianceOptionsDescriptor, AcceptsTheDefaultsAndDescribesEveryMember) {
+  test::ExpectDescribesEveryMember(RangeVarianceOptionsDescriptor(),
+                                   {"enabled", "window_min_m", "window_max_m", "min_samples", "default_sigma_m",
+                                    "max_variance_factor", "min_sigma_m", "overlap_distance_m"});
+}
+
+TEST(RangeVarianceOptions, NamesBothFieldsOfAFailedCrossCheck) {
+  RangeVarianceOptions o;
+  o.window_max_m = 0.5;
+  o.min_sigma_m = 0.08;
+
+  EXPECT_EQ(Validate(o), (std::vector<std::string>{"window_max_m: 0.5 m must be >= window_min_m (0.9 m)",
+                                                   "min_sigma_m: 0.08 m must be <= default_sigma_m (0.07 m)"}));
 }
 
 }  // namespace

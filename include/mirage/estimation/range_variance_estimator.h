@@ -15,6 +15,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "mirage/core/options_descriptor.h"
 #include "mirage/core/types.h"
 
 namespace mirage::estimation {
@@ -23,28 +24,34 @@ namespace mirage::estimation {
 struct RangeVarianceOptions {
   /// Estimate per-VA variances online; when false every range gets range_sigma_m of the tracker.
   bool enabled = true;
-  /// Minimum spatial extent d_min of the amplitude window (m), > 0: guards against correlated
-  /// samples. 0.9 m (Tab. 3.2).
+  /// Minimum spatial extent d_min of the amplitude window (m), in [1e-6, 1e9]: guards against
+  /// correlated samples. 0.9 m (Tab. 3.2).
   double window_min_m = 0.9;
-  /// Maximum spatial extent d_max (m), >= window_min_m: keeps the channel stationary. 1.0 m.
+  /// Maximum spatial extent d_max (m), in [1e-6, 1e9] and >= window_min_m: keeps the channel
+  /// stationary. 1.0 m.
   double window_max_m = 1.0;
-  /// Minimum number of amplitudes N_min in the window (>= 3). 15 (Tab. 3.2).
+  /// Minimum number of amplitudes N_min in the window, in [3, 1e6]. 15 (Tab. 3.2).
   int min_samples = 15;
-  /// Default range standard deviation sigma_VA before any estimate (m), > 0. 0.07 m (the text;
-  /// Tab. 3.2 misprints it as 0.07 m^2).
+  /// Default range standard deviation sigma_VA before any estimate (m), in [1e-9, 1e9]. 0.07 m
+  /// (the text; Tab. 3.2 misprints it as 0.07 m^2).
   double default_sigma_m = 0.07;
-  /// sigma_VA,max^2 = factor * sigma_VA^2 for SINR estimates of zero or complex (>= 1). 10.
+  /// sigma_VA,max^2 = factor * sigma_VA^2 for SINR estimates of zero or complex, in [1, 1e9]. 10.
   double max_variance_factor = 10.0;
-  /// Floor of the standard deviation (m), > 0 [GAP in the thesis]: Var[Y] -> 0 would give zero
-  /// variance. 1 cm, about the delay error that model mismatch leaves at high SINR.
+  /// Floor of the standard deviation (m), in [1e-9, 1e9] and <= default_sigma_m [GAP in the
+  /// thesis]: Var[Y] -> 0 would give zero variance. 1 cm, about the delay error that model
+  /// mismatch leaves at high SINR.
   double min_sigma_m = 0.01;
-  /// Two expected ranges closer than this overlap (m), > 0; overlapping samples are discarded
-  /// because Eq. (3.25) does not hold for them [GAP: the thesis gives no criterion]. 0.15 m is
-  /// c * T_p at T_p = 0.5 ns.
+  /// Two expected ranges closer than this overlap (m), in [0, 1e9]; overlapping samples are
+  /// discarded because Eq. (3.25) does not hold for them [GAP: the thesis gives no criterion].
+  /// 0.15 m is c * T_p at T_p = 0.5 ns.
   double overlap_distance_m = 0.15;
 };
 
-/// Problems with the options, empty if valid.
+/// The options' descriptor (keys, units, ranges, docs, the window and sigma-floor checks;
+/// core/options_descriptor.h).
+const core::OptionsDescriptor<RangeVarianceOptions>& RangeVarianceOptionsDescriptor();
+
+/// Problems with the options ("key: message"), empty if valid; see the descriptor.
 std::vector<std::string> Validate(const RangeVarianceOptions& options);
 
 /// Moments of Y = |alpha_hat|^2 over a VA's current window (Eq. 3.27).

@@ -15,7 +15,7 @@ const core::OptionsDescriptor<ConstantVelocityOptions>& ConstantVelocityOptionsD
     d.Number(&ConstantVelocityOptions::accel_sigma_mps2,
              {.key = "accel_sigma_mps2",
               .unit = "m/s^2",
-              .range = core::ValueRange::Above(0.0),
+              .range = core::ValueRange::Positive(),
               .doc = "Standard deviation of the white acceleration of the constant-velocity model. 1 m/s^2 is a "
                      "walking person's typical acceleration; 2 m/s^2 diverges more often in the seminar room."});
     return d;

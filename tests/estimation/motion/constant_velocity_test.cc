@@ -9,6 +9,7 @@
 #include <Eigen/Core>
 #include <gtest/gtest.h>
 
+#include "core/options_descriptor_expectations.h"
 #include "mirage/core/rng.h"
 
 namespace mirage::estimation {
@@ -231,6 +232,10 @@ TEST(ConstantVelocityOptions, RejectsNonPositiveAndNonFiniteAccelerationSigma) {
     ASSERT_EQ(problems.size(), 1U) << bad;
     EXPECT_NE(problems[0].find("accel_sigma_mps2"), std::string::npos);
   }
+}
+
+TEST(ConstantVelocityOptionsDescriptor, AcceptsTheDefaultsAndDescribesEveryMember) {
+  test::ExpectDescribesEveryMember(ConstantVelocityOptionsDescriptor(), {"accel_sigma_mps2"});
 }
 
 }  // namespace
