@@ -35,12 +35,25 @@ ErrorStats ComputeErrorStats(std::span<const double> errors_m) {
   return s;
 }
 
-std::vector<std::string> Validate(const DivergenceRule& rule) {
-  std::vector<std::string> problems;
-  if (!(rule.threshold_m > 0.0) || !std::isfinite(rule.threshold_m)) problems.push_back("threshold_m must be > 0 m");
-  if (!(rule.last_fraction > 0.0 && rule.last_fraction <= 1.0)) problems.push_back("last_fraction must be in (0, 1]");
-  return problems;
+const core::OptionsDescriptor<DivergenceRule>& DivergenceRuleDescriptor() {
+  using core::ValueRange;
+  using O = DivergenceRule;
+  static const auto descriptor = [] {
+    core::OptionsDescriptor<O> d("eval::DivergenceRule");
+    d.Number(&O::threshold_m, {.key = "threshold_m",
+                               .unit = "m",
+                               .range = ValueRange::Positive(),
+                               .doc = "A run diverged when its mean position error over the last part exceeds this. "
+                                      "0.5 m (ROADMAP.md)."});
+    d.Number(&O::last_fraction, {.key = "last_fraction",
+                                 .range = ValueRange::Closed(core::kTinyOption, 1.0),
+                                 .doc = "The last part: this fraction of the run's final steps is averaged. 0.2."});
+    return d;
+  }();
+  return descriptor;
 }
+
+std::vector<std::string> Validate(const DivergenceRule& rule) { return DivergenceRuleDescriptor().Validate(rule); }
 
 bool IsDiverged(std::span<const double> errors_m, const DivergenceRule& rule) {
   if (errors_m.empty()) return false;

@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: MIT
+#include "core/options_descriptor_expectations.h"
 #include "mirage/eval/error_stats.h"
 
 #include <cmath>
@@ -231,6 +232,15 @@ TEST(DivergenceRule, RejectsAFractionOutsideZeroToOne) {
 
 TEST(DivergenceRule, ReportsEveryProblem) {
   EXPECT_EQ(Validate(DivergenceRule{-1.0, 2.0}).size(), 2U);
+}
+
+TEST(DivergenceRuleDescriptor, AcceptsTheDefaultsAndDescribesEveryMember) {
+  test::ExpectDescribesEveryMember(DivergenceRuleDescriptor(), {"threshold_m", "last_fraction"});
+}
+
+TEST(DivergenceRule, ValidateNamesTheKeyTheValueAndTheRange) {
+  EXPECT_EQ(Validate(DivergenceRule{0.5, 0.0}),
+            std::vector<std::string>{"last_fraction: 0 is out of range, expected a number in [1e-09, 1]"});
 }
 
 }  // namespace

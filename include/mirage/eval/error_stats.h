@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "mirage/core/options_descriptor.h"
+
 namespace mirage::eval {
 
 /// Error statistics (m).
@@ -30,13 +32,16 @@ ErrorStats ComputeErrorStats(std::span<const double> errors_m);
 /// A run diverged when its mean error over the last `last_fraction` of the steps exceeds
 /// `threshold_m`.
 struct DivergenceRule {
-  /// Error threshold (m), > 0. 0.5 m (ROADMAP.md).
+  /// Error threshold (m), in [1e-9, 1e9]. 0.5 m (ROADMAP.md).
   double threshold_m = 0.5;
-  /// Fraction of the final steps that is averaged, in (0, 1]. 0.2.
+  /// Fraction of the final steps that is averaged, in [1e-9, 1]. 0.2.
   double last_fraction = 0.2;
 };
 
-/// Problems with the rule, empty if valid.
+/// The rule's descriptor (keys, units, ranges, docs; core/options_descriptor.h).
+const core::OptionsDescriptor<DivergenceRule>& DivergenceRuleDescriptor();
+
+/// Problems with the rule ("key: message"), empty if valid; see the descriptor.
 std::vector<std::string> Validate(const DivergenceRule& rule);
 
 /// True if the run with these per-step errors diverged.
