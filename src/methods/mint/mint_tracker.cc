@@ -9,6 +9,7 @@
 #include "mirage/estimation/range_association.h"
 #include "mirage/geometry/feasible_region.h"
 #include "mirage/geometry/visibility.h"
+#include "mirage/methods/tracker_options.h"
 
 namespace mirage::methods::mint {
 
@@ -17,29 +18,53 @@ namespace blocks = estimation::blocks;
 constexpr estimation::BlockKey kPosition(blocks::kPosition, 0);
 constexpr estimation::BlockKey kVelocity(blocks::kVelocity, 0);
 
-std::vector<std::string> Validate(const MintOptions& options) {
-  std::vector<std::string> problems;
-  const auto positive = [&](double v, const char* name, const char* unit) {
-    if (!(v > 0.0) || !std::isfinite(v)) problems.push_back(std::string(name) + " must be > 0 " + unit);
-  };
-  positive(options.cutoff_m, "cutoff_m", "m");
-  positive(options.range_sigma_m, "range_sigma_m", "m");
-  positive(options.initial_position_sigma_m, "initial_position_sigma_m", "m");
-  positive(options.initial_velocity_sigma_mps, "initial_velocity_sigma_mps", "m/s");
-  if (options.max_order < 0 || options.max_order > geometry::kMaxVirtualAnchorOrder) {
-    problems.push_back("max_order must be in [0, " + std::to_string(geometry::kMaxVirtualAnchorOrder) + "]");
-  }
-  if (!(options.innovation_gate_chi2 >= 0.0) || !std::isfinite(options.innovation_gate_chi2)) {
-    problems.push_back("innovation_gate_chi2 must be >= 0");
-  }
-  for (const auto& p : estimation::Validate(options.motion)) problems.push_back("motion." + p);
-  for (const auto& p : Validate(options.variance)) problems.push_back("variance." + p);
-  for (const auto& p : Validate(options.relocalization)) problems.push_back("relocalization." + p);
-  if (options.relocalization.enabled && options.relocalization.max_order > options.max_order) {
-    problems.push_back("relocalization.max_order must be <= max_order (the tracker knows no higher-order VAs)");
-  }
-  return problems;
+const core::OptionsDescriptor<MintOptions>& MintOptionsDescriptor() {
+  using core::ValueRange;
+  using O = MintOptions;
+  static const auto descriptor = [] {
+    const ValueRange order_range = ValueRange::Closed(0.0, geometry::kMaxVirtualAnchorOrder);
+    core::OptionsDescriptor<O> d("methods::mint::MintOptions");
+    AddTrackerStartFields(d);
+    d.Integer(&O::max_order, {.key = "max_order",
+                              .range = order_range,
+                              .doc = "Highest order of the known VAs the tracker uses. 2 (Lafer Tab. 3.1)."});
+    d.Boolean(&O::reassociate,
+              {.key = "reassociate",
+               .doc = "Two-stage association (mirage): update with the LOS ranges first, associate all VAs at that "
+                      "estimate. After a corner the constant-velocity prediction overshoots by up to 10 cm, enough to "
+                      "pair reflections with their neighbours."});
+    d.Number(&O::innovation_gate_chi2,
+             {.key = "innovation_gate_chi2",
+              .range = ValueRange::Closed(0.0, 1e6),
+              .doc = "Innovation gate inside the assignment (mirage; 0 = off): a pair whose squared innovation exceeds "
+                     "this many times its variance is never associated. 9, a 3-sigma gate (chi^2, 1 degree of "
+                     "freedom), rejects the diffuse-multipath spikes the cut-off lets through near weak reflections."});
+    d.Boolean(&O::constrain_to_room,
+              {.key = "constrain_to_room",
+               .doc = "Keep the estimate inside the room and out of obstacles (mirage's wall-crossing version of the "
+                      "in-room check of Lafer Sec. 4.4.3): a move that crosses a wall stops 1 cm before it."});
+    d.Section(&O::motion, {.key = "motion", .doc = "Constant-velocity motion model (Lafer Eq. 3.13-3.16)."},
+              estimation::ConstantVelocityOptionsDescriptor());
+    d.Section(&O::variance, {.key = "variance", .doc = "Online range-variance estimation per VA (Lafer Sec. 3.6)."},
+              estimation::RangeVarianceOptionsDescriptor());
+    d.Section(&O::relocalization, {.key = "relocalization", .doc = "Track-loss detection and relocalization (mirage)."},
+              RelocalizationOptionsDescriptor());
+    d.Check("relocalization.max_order <= max_order when relocalization.enabled",
+            [=](const O& o) -> std::vector<std::string> {
+              const int order = o.relocalization.max_order;
+              if (!o.relocalization.enabled || order <= o.max_order || !order_range.Contains(order) ||
+                  !order_range.Contains(o.max_order)) {
+                return {};
+              }
+              return {"relocalization.max_order: " + std::to_string(order) + " must be <= max_order (" +
+                      std::to_string(o.max_order) + "): the tracker knows no higher-order VAs"};
+            });
+    return d;
+  }();
+  return descriptor;
 }
+
+std::vector<std::string> Validate(const MintOptions& options) { return MintOptionsDescriptor().Validate(options); }
 
 MintTracker::MintTracker(const MintOptions& options, const geometry::VirtualAnchorSet& vas,
                          const geometry::FloorPlan& plan, double range_sigma_at_unit_sinr_m)

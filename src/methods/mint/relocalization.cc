@@ -17,12 +17,14 @@ const core::OptionsDescriptor<RelocalizationOptions>& RelocalizationOptionsDescr
   using core::ValueRange;
   using O = RelocalizationOptions;
   static const auto descriptor = [] {
+    // Sanity bounds of the search square's half-width and grid step (the scenario reader's).
+    const ValueRange grid_range = ValueRange::Closed(1e-3, 100.0);
     core::OptionsDescriptor<O> d("methods::mint::RelocalizationOptions");
     d.Boolean(&O::enabled, {.key = "enabled", .doc = "Detect track loss and relocalize."});
     d.Number(&O::match_tolerance_m,
              {.key = "match_tolerance_m",
               .unit = "m",
-              .range = ValueRange::Above(0.0),
+              .range = ValueRange::Closed(1e-6, 10.0),
               .doc = "A VA matches when a measured range lies within this distance of its expected range. 5 cm: "
                      "about 2 sigma of a first-order reflection's range at 5 dB SINR."});
     d.Integer(&O::max_order,
@@ -31,7 +33,7 @@ const core::OptionsDescriptor<RelocalizationOptions>& RelocalizationOptionsDescr
                .doc = "Highest VA order used for the score. 1: first-order reflections are strong enough to be "
                       "detected most of the time; second-order ones mostly are not."});
     d.Integer(&O::min_visible, {.key = "min_visible",
-                                .range = ValueRange::AtLeast(1.0),
+                                .range = ValueRange::Closed(1.0, 10000.0),
                                 .doc = "Minimum number of visible VAs for the score to count."});
     d.Number(&O::lost_score, {.key = "lost_score",
                               .range = ValueRange::Closed(0.0, 1.0),
@@ -39,25 +41,23 @@ const core::OptionsDescriptor<RelocalizationOptions>& RelocalizationOptionsDescr
                                      "percentile is about 0.55 in the seminar room."});
     d.Integer(&O::lost_steps, {.key = "lost_steps",
                                .unit = "steps",
-                               .range = ValueRange::AtLeast(1.0),
+                               .range = ValueRange::Closed(1.0, 100000.0),
                                .doc = "Consecutive lost steps that trigger a search."});
     d.Number(&O::search_radius_m, {.key = "search_radius_m",
                                    .unit = "m",
-                                   .range = ValueRange::Above(0.0),
+                                   .range = grid_range,
                                    .doc = "Half-width of the square searched around the estimate."});
-    d.Number(&O::search_step_m,
-             {.key = "search_step_m",
-              .unit = "m",
-              .range = ValueRange::Above(0.0),
-              .doc = "Coarse grid step; the best coarse cell is refined on a grid 4 times finer."});
+    d.Number(&O::search_step_m, {.key = "search_step_m",
+                                 .unit = "m",
+                                 .range = grid_range,
+                                 .doc = "Coarse grid step; the best coarse cell is refined on a grid 4 times finer."});
     d.Number(&O::found_score, {.key = "found_score",
                                .range = ValueRange::Closed(0.0, 1.0),
                                .doc = "Score the best position must reach to be accepted."});
     d.Check("search_step_m <= search_radius_m <= 200 * search_step_m (a coarse grid of at most 401 x 401 points)",
-            [](const O& o) -> std::vector<std::string> {
+            [=](const O& o) -> std::vector<std::string> {
               // Out-of-range values are reported by their own fields.
-              if (!ValueRange::Above(0.0).Contains(o.search_step_m) ||
-                  !ValueRange::Above(0.0).Contains(o.search_radius_m)) {
+              if (!grid_range.Contains(o.search_step_m) || !grid_range.Contains(o.search_radius_m)) {
                 return {};
               }
               const std::string step = core::FormatNumber(o.search_step_m) + " m";

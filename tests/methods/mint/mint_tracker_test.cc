@@ -13,6 +13,7 @@
 #include <Eigen/Dense>
 #include <gtest/gtest.h>
 
+#include "core/options_descriptor_expectations.h"
 #include "methods/mint/square_room.h"
 #include "mirage/geometry/trajectory.h"
 #include "mirage/geometry/visibility.h"
@@ -338,6 +339,24 @@ TEST(MintOptions, AcceptsTheDefaultsAndPrefixesNestedProblems) {
   EXPECT_TRUE(Mentions(with([](auto& o) { o.variance.min_samples = 1; }), "variance.min_samples"));
   EXPECT_TRUE(Mentions(with([](auto& o) { o.relocalization.lost_steps = 0; }), "relocalization.lost_steps"));
   EXPECT_TRUE(Mentions(with([](auto& o) { o.motion.accel_sigma_mps2 = 0.0; }), "motion.accel_sigma_mps2"));
+}
+
+TEST(MintOptionsDescriptor, AcceptsTheDefaultsAndDescribesEveryMember) {
+  test::ExpectDescribesEveryMember(MintOptionsDescriptor(),
+                                   {"cutoff_m", "range_sigma_m", "initial_position_sigma_m",
+                                    "initial_velocity_sigma_mps", "max_order", "reassociate", "innovation_gate_chi2",
+                                    "constrain_to_room", "motion", "variance", "relocalization"});
+}
+
+TEST(MintOptions, RejectsARelocalizationOrderAboveTheTrackersOnlyWhenRelocalizing) {
+  MintOptions o;
+  o.max_order = 1;
+  o.relocalization.max_order = 2;
+
+  EXPECT_EQ(Validate(o), std::vector<std::string>{"relocalization.max_order: 2 must be <= max_order (1): the "
+                                                  "tracker knows no higher-order VAs"});
+  o.relocalization.enabled = false;
+  EXPECT_TRUE(Validate(o).empty());
 }
 
 }  // namespace

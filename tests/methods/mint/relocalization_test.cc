@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include "core/options_descriptor_expectations.h"
 #include "methods/mint/square_room.h"
 #include "mirage/geometry/visibility.h"
 
@@ -223,6 +224,12 @@ TEST(RelocalizationOptions, AcceptsTheDefaultsAndNamesEveryInvalidField) {
   EXPECT_TRUE(Mentions(with([](auto& o) { o.search_radius_m = -1.0; }), "search_radius_m"));
   EXPECT_TRUE(Mentions(with([](auto& o) { o.search_step_m = 2.0; }), "search_step_m"));
   EXPECT_TRUE(Mentions(with([](auto& o) { o.found_score = -0.1; }), "found_score"));
+}
+
+TEST(RelocalizationOptionsDescriptor, AcceptsTheDefaultsAndDescribesEveryMember) {
+  test::ExpectDescribesEveryMember(RelocalizationOptionsDescriptor(),
+                                   {"enabled", "match_tolerance_m", "max_order", "min_visible", "lost_score",
+                                    "lost_steps", "search_radius_m", "search_step_m", "found_score"});
 }
 
 }  // namespace

@@ -18,6 +18,7 @@
 #include <Eigen/Core>
 
 #include "mirage/core/measurements.h"
+#include "mirage/core/options_descriptor.h"
 #include "mirage/estimation/ekf_update.h"
 #include "mirage/estimation/motion/constant_velocity.h"
 #include "mirage/estimation/state.h"
@@ -30,15 +31,16 @@ namespace mirage::methods::mint {
 
 /// Parameters of the MINT tracker (defaults from Lafer 2014 Tab. 3.1 where it gives them).
 struct MintOptions {
-  /// Cut-off distance d_c of the data association (m), > 0. 0.15 m (Tab. 3.1).
+  /// Cut-off distance d_c of the data association (m), in [1e-9, 1e9]. 0.15 m (Tab. 3.1).
   double cutoff_m = 0.15;
-  /// Range standard deviation sigma_z used when variance estimation is off (m), > 0.
+  /// Range standard deviation sigma_z used when variance estimation is off (m), in [1e-9, 1e9].
   /// 0.07 m (Tab. 3.1: sigma_z^2 = 0.0049 m^2).
   double range_sigma_m = 0.07;
-  /// Standard deviation of the initial position sigma_i (m), > 0. 0.1 m (Tab. 3.1: 0.01 m^2).
+  /// Standard deviation of the initial position sigma_i (m), in [1e-9, 1e9]. 0.1 m (Tab. 3.1:
+  /// 0.01 m^2).
   double initial_position_sigma_m = 0.1;
-  /// Standard deviation of the initial velocity (m/s), > 0; the filter starts at rest [GAP].
-  /// 0.5 m/s, the maximum walking speed v_max of Tab. 3.1.
+  /// Standard deviation of the initial velocity (m/s), in [1e-9, 1e9]; the filter starts at rest
+  /// [GAP]. 0.5 m/s, the maximum walking speed v_max of Tab. 3.1.
   double initial_velocity_sigma_mps = 0.5;
   /// Highest order of the known VAs used by the tracker, in [0, 6]. 2 (Tab. 3.1).
   int max_order = 2;
@@ -47,8 +49,8 @@ struct MintOptions {
   /// a corner the constant-velocity prediction overshoots by up to 10 cm, enough to pair
   /// reflections with their neighbours.
   bool reassociate = true;
-  /// Innovation gate inside the assignment (mirage; 0 switches it off): a pair whose squared
-  /// innovation exceeds this many times its variance J P J^T + R is never associated. 9 is a
+  /// Innovation gate inside the assignment (mirage; 0 switches it off), in [0, 1e6]: a pair whose
+  /// squared innovation exceeds this many times its variance J P J^T + R is never associated. 9 is a
   /// 3-sigma gate (chi^2 with 1 degree of freedom: 99.7 %). It rejects the diffuse-multipath
   /// spikes the fixed cut-off d_c lets through around weak reflections.
   double innovation_gate_chi2 = 9.0;
@@ -61,11 +63,16 @@ struct MintOptions {
   estimation::ConstantVelocityOptions motion;
   /// Online variance estimation (Sec. 3.6).
   estimation::RangeVarianceOptions variance;
-  /// Track-loss detection and relocalization (mirage).
+  /// Track-loss detection and relocalization (mirage); its max_order is at most max_order.
   RelocalizationOptions relocalization;
 };
 
-/// Problems with the options, empty if valid.
+/// The options' descriptor (keys, units, ranges, docs, the relocalization order check;
+/// core/options_descriptor.h). The number of VAs that max_order gives depends on the floor plan
+/// and is checked where the plan is known.
+const core::OptionsDescriptor<MintOptions>& MintOptionsDescriptor();
+
+/// Problems with the options ("key: message"), empty if valid; see the descriptor.
 std::vector<std::string> Validate(const MintOptions& options);
 
 /// One association made at a step.

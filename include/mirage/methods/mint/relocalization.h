@@ -24,22 +24,23 @@ namespace mirage::methods::mint {
 struct RelocalizationOptions {
   /// Detect track loss and relocalize.
   bool enabled = true;
-  /// A VA matches when a measured range lies within this distance of its expected range (m),
-  /// > 0. 5 cm: about 2 sigma of a first-order reflection's range at 5 dB SINR.
+  /// A VA matches when a measured range lies within this distance of its expected range (m), in
+  /// [1e-6, 10]. 5 cm: about 2 sigma of a first-order reflection's range at 5 dB SINR.
   double match_tolerance_m = 0.05;
   /// Highest VA order used for the score, in [0, 6]. 1: first-order reflections are strong
   /// enough to be detected most of the time; second-order ones mostly are not.
   int max_order = 1;
-  /// Minimum number of visible VAs for the score to count, >= 1.
+  /// Minimum number of visible VAs for the score to count, in [1, 10000].
   int min_visible = 4;
   /// Score below which a step counts as lost, in [0, 1]. 0.4 (a tracked agent's 5th
   /// percentile is about 0.55 in the seminar room).
   double lost_score = 0.4;
-  /// Consecutive lost steps that trigger a search, >= 1.
+  /// Consecutive lost steps that trigger a search, in [1, 100000].
   int lost_steps = 3;
-  /// Half-width of the square searched around the estimate (m), > 0.
+  /// Half-width of the square searched around the estimate (m), in [1e-3, 100].
   double search_radius_m = 1.5;
-  /// Coarse grid step (m), > 0; the best coarse cell is refined on a grid 4 times finer.
+  /// Coarse grid step (m), in [1e-3, 100], at most search_radius_m and at least search_radius_m /
+  /// 200; the best coarse cell is refined on a grid 4 times finer.
   double search_step_m = 0.1;
   /// Score the best position must reach to be accepted, in [0, 1].
   double found_score = 0.6;
