@@ -16,6 +16,7 @@
 #include "mirage/estimation/range_association.h"
 #include "mirage/geometry/visibility.h"
 #include "mirage/methods/mint/relocalization.h"
+#include "mirage/methods/tracker_options.h"
 
 namespace mirage::methods::slam {
 
@@ -25,55 +26,145 @@ namespace blocks = estimation::blocks;
 constexpr BlockKey kPosition(blocks::kPosition, 0);
 constexpr BlockKey kVelocity(blocks::kVelocity, 0);
 
-std::vector<std::string> Validate(const SlamOptions& options) {
-  std::vector<std::string> problems;
-  const auto positive = [&](double v, const char* name, const char* unit) {
-    if (!(v > 0.0) || !std::isfinite(v)) problems.push_back(std::string(name) + " must be > 0 " + unit);
-  };
-  positive(options.cutoff_m, "cutoff_m", "m");
-  positive(options.range_sigma_m, "range_sigma_m", "m");
-  positive(options.initial_position_sigma_m, "initial_position_sigma_m", "m");
-  positive(options.initial_velocity_sigma_mps, "initial_velocity_sigma_mps", "m/s");
-  positive(options.prior_va_sigma_m, "prior_va_sigma_m", "m");
-  positive(options.va_filter_sigma_m, "va_filter_sigma_m", "m");
-  positive(options.shadow_sigma_m, "shadow_sigma_m", "m");
-  if (!(options.los_reacquire_m >= 0.0) || !std::isfinite(options.los_reacquire_m)) {
-    problems.push_back("los_reacquire_m must be >= 0 m");
-  }
-  if (!(options.shadow_cone_deg >= 0.0 && options.shadow_cone_deg <= 180.0)) {
-    problems.push_back("shadow_cone_deg must be in [0, 180] deg");
-  }
-  if (options.prior_max_order < 0 || options.prior_max_order > geometry::kMaxVirtualAnchorOrder) {
-    problems.push_back("prior_max_order must be in [0, " + std::to_string(geometry::kMaxVirtualAnchorOrder) + "]");
-  }
-  if (!(options.innovation_gate_chi2 >= 0.0) || !std::isfinite(options.innovation_gate_chi2)) {
-    problems.push_back("innovation_gate_chi2 must be >= 0");
-  }
-  if (!(options.no_visibility_model_gate_chi2 >= 0.0) || !std::isfinite(options.no_visibility_model_gate_chi2)) {
-    problems.push_back("no_visibility_model_gate_chi2 must be >= 0");
-  }
-  if (options.nis_window_updates < 0) problems.push_back("nis_window_updates must be >= 0");
-  if (!(options.discovered_va_walk_m_per_sqrt_s >= 0.0) || !std::isfinite(options.discovered_va_walk_m_per_sqrt_s)) {
-    problems.push_back("discovered_va_walk_m_per_sqrt_s must be >= 0");
-  }
-  if (!(options.amplitude_gate_probability >= 0.0 && options.amplitude_gate_probability <= 0.5)) {
-    problems.push_back("amplitude_gate_probability must be in [0, 0.5]");
-  }
-  if (!(options.blocked_amplitude_probability >= 0.0 && options.blocked_amplitude_probability <= 0.5)) {
-    problems.push_back("blocked_amplitude_probability must be in [0, 0.5]");
-  }
-  if (!(options.startup_amplitude_k_factor >= 0.0) || !std::isfinite(options.startup_amplitude_k_factor)) {
-    problems.push_back("startup_amplitude_k_factor must be >= 0");
-  }
-  if (!(options.max_speed_mps >= 0.0) || !std::isfinite(options.max_speed_mps)) {
-    problems.push_back("max_speed_mps must be >= 0 (0 = off)");
-  }
-  for (const auto& p : estimation::Validate(options.motion)) problems.push_back("motion." + p);
-  for (const auto& p : estimation::Validate(options.variance)) problems.push_back("variance." + p);
-  for (const auto& p : Validate(options.discovery)) problems.push_back("discovery." + p);
-  for (const auto& p : Validate(options.recovery)) problems.push_back("recovery." + p);
-  return problems;
+const core::OptionsDescriptor<SlamOptions>& SlamOptionsDescriptor() {
+  using core::ValueRange;
+  using O = SlamOptions;
+  static const auto descriptor = [] {
+    const ValueRange gate_range = ValueRange::Closed(0.0, 1e6);
+    const ValueRange probability_range = ValueRange::Closed(0.0, 0.5);
+    core::OptionsDescriptor<O> d("methods::slam::SlamOptions");
+    AddTrackerStartFields(d);
+    d.Integer(&O::prior_max_order,
+              {.key = "prior_max_order",
+               .range = ValueRange::Closed(0.0, geometry::kMaxVirtualAnchorOrder),
+               .doc = "Highest order of the VAs known at the start from the known floor plan: 0 = only the physical "
+                      "anchors (the paper's SLAM), 2 or 3 = the paper's known-VA baseline."});
+    d.Number(&O::prior_va_sigma_m,
+             {.key = "prior_va_sigma_m",
+              .unit = "m",
+              .range = ValueRange::Positive(),
+              .doc = "Prior standard deviation of each known VA's position: 5 cm (a gap; the digest suggests 5-10 cm). "
+                     "The physical anchors are exact and not in the state."});
+    d.Boolean(&O::prior_visibility,
+              {.key = "prior_visibility",
+               .doc = "Prior VAs and the anchors' LOS are associated only where the known floor plan makes them "
+                      "visible (ray tracing); off: the floor plan is not used."});
+    d.Boolean(&O::reassociate, {.key = "reassociate",
+                                .doc = "Two-stage association as in MINT (mirage): the LOS ranges first, then all VAs "
+                                       "at that estimate."});
+    d.Number(&O::innovation_gate_chi2,
+             {.key = "innovation_gate_chi2",
+              .range = gate_range,
+              .doc = "Innovation gate inside the assignment (mirage; 0 = off), chi^2 with 1 degree of freedom; the "
+                     "innovation variance includes the VA's covariance. 9: 3 sigma."});
+    d.Number(&O::no_visibility_model_gate_chi2,
+             {.key = "no_visibility_model_gate_chi2",
+              .range = gate_range,
+              .doc = "Innovation gate of the VAs without a visibility model (discovered ones, prior ones without a "
+                     "visibility region; mirage; 0 = off): the tighter of this and innovation_gate_chi2. 4 (2 sigma) "
+                     "halves the stand-ins of visible but unextracted paths such a VA takes and loses 3 % of its "
+                     "right ranges (docs/methods/slam.md)."});
+    d.Boolean(&O::va_filter, {.key = "va_filter",
+                              .doc = "The VA filter (Leitinger Sec. III-C): a VA whose estimated range std exceeds "
+                                     "va_filter_sigma_m takes no part in the association."});
+    d.Number(&O::va_filter_sigma_m, {.key = "va_filter_sigma_m",
+                                     .unit = "m",
+                                     .range = ValueRange::Positive(),
+                                     .doc = "sigma_d,max of the VA filter: 6.23 cm, the CRLB at SINR 0 dB (Leitinger "
+                                            "Sec. IV)."});
+    d.Boolean(&O::va_filter_keeps_associating,
+              {.key = "va_filter_keeps_associating",
+               .doc = "mirage: a filtered VA still takes part in the association, so its range variance stays current "
+                      "and it can come back, but its ranges do not update the state; false (the paper) keeps it out "
+                      "for good."});
+    d.Boolean(&O::va_filter_anchors,
+              {.key = "va_filter_anchors",
+               .doc = "mirage: the VA filter applies to the physical anchors' LOS too, which detects a blocked LOS by "
+                      "its range variance. Only with va_filter_keeps_associating."});
+    d.Number(&O::amplitude_gate_probability,
+             {.key = "amplitude_gate_probability",
+              .range = probability_range,
+              .doc = "Amplitude gate (mirage; 0 = off): a range is not associated to a VA if its amplitude is this "
+                     "improbable, P(|alpha| <= measured), under the VA's fitted Rician law (Lafer Eq. 3.27). A blocked "
+                     "path's weak diffuse stand-in passes any range gate but not this one."});
+    d.Number(&O::startup_amplitude_k_factor,
+             {.key = "startup_amplitude_k_factor",
+              .range = ValueRange::Closed(0.0, 1e6),
+              .doc = "K-factor of the provisional Rician law the amplitude gates use until a VA's amplitude window "
+                     "first fills (mirage; 0 = off). 10: keeps the first steps' lagging prediction off weaker peaks "
+                     "behind the LOS (seminar room, seed 14); at amplitude_gate_probability 1e-3 it rejects "
+                     "amplitudes below 0.35 of the expected one."});
+    d.Number(&O::blocked_amplitude_probability,
+             {.key = "blocked_amplitude_probability",
+              .range = probability_range,
+              .doc = "Amplitude gate in a blocked anchor's shadow (mirage; 0 = off): while the anchor's LOS found no "
+                     "range, its VAs without a visibility model take a range only if its amplitude has at least this "
+                     "probability. 0.1 rejects 37 % of the diffuse stand-ins and 7 % of the paths' own ranges "
+                     "(seminar room, seed 1). Needs reassociate."});
+    d.Number(&O::shadow_cone_deg,
+             {.key = "shadow_cone_deg",
+              .unit = "deg",
+              .range = ValueRange::Closed(0.0, 180.0),
+              .doc = "Shadow cone half-width (mirage; 0 = off): a range of a VA without a visibility model that "
+                     "reaches the agent within this angle of an anchor whose LOS found no range gets shadow_sigma_m^2 "
+                     "more variance and stays out of the amplitude windows; needs reassociate. Off: since the sweep fills "
+                     "the map, p90 is better on 17 of 18 seed-trajectory pairs of the seminar room "
+                     "(docs/methods/slam.md)."});
+    d.Number(&O::shadow_sigma_m, {.key = "shadow_sigma_m",
+                                  .unit = "m",
+                                  .range = ValueRange::Positive(),
+                                  .doc = "Standard deviation added to a shadowed range: the diffuse stand-in's typical "
+                                         "lag. 5 cm."});
+    d.Number(&O::los_reacquire_m,
+             {.key = "los_reacquire_m",
+              .unit = "m",
+              .range = ValueRange::NonNegative(),
+              .doc = "LOS re-acquisition window (mirage; no effect unless above cutoff_m): an anchor's LOS that found "
+                     "no range at the last step is searched this far from the predicted range, amplitude-checked. "
+                     "0.4 m: above the drift of most shadowed runs; at 1 m other strong paths were taken for the LOS "
+                     "(docs/methods/slam.md)."});
+    d.Integer(&O::nis_window_updates,
+              {.key = "nis_window_updates",
+               .unit = "updates",
+               .range = ValueRange::Closed(0.0, 1e5),
+               .doc = "Innovation-scaled range variance (mirage; 0 = off): a VA's range variance is multiplied by the "
+                      "mean NIS of its last this many updates when that mean exceeds 1 (at least 5 recorded). 20; 10 "
+                      "and 40 gave about the same (docs/methods/slam.md)."});
+    d.Number(&O::discovered_va_walk_m_per_sqrt_s,
+             {.key = "discovered_va_walk_m_per_sqrt_s",
+              .unit = "m/sqrt(s)",
+              .range = ValueRange::NonNegative(),
+              .doc = "Random walk of the discovered VAs (mirage; 0 = off): q^2 dt I is added to each one's covariance "
+                     "at every prediction. Off: 6.3 mm/sqrt(s) makes the map's NEES consistent but trajectory 2 "
+                     "worse at its corner (docs/methods/slam.md)."});
+    d.Boolean(&O::joseph_update,
+              {.key = "joseph_update",
+               .doc = "Joseph form of the covariance update, as in MINT. Off: the standard form P - K H P halves the "
+                      "O(n^2 m) cost of a step with tens of VAs (bench/methods/slam_step_bench.cc)."});
+    d.Section(&O::motion,
+              {.key = "motion", .doc = "Constant-velocity motion model of the agent (Lafer Eq. 3.13-3.16)."},
+              estimation::ConstantVelocityOptionsDescriptor());
+    d.Number(&O::max_speed_mps,
+             {.key = "max_speed_mps",
+              .unit = "m/s",
+              .range = ValueRange::NonNegative(),
+              .doc = "A walker's speed limit (mirage; 0 = off): a faster velocity estimate is scaled back onto it "
+                     "after each update. 1.5 m/s, a brisk walk: it kept a restarted track from running away (seminar "
+                     "room, seed 30) and changed no other run."});
+    d.Section(
+        &O::variance,
+        {.key = "variance", .doc = "Online range-variance estimation per VA (Lafer Sec. 3.6, Leitinger Sec. III-C)."},
+        estimation::RangeVarianceOptionsDescriptor());
+    d.Section(&O::discovery, {.key = "discovery", .doc = "Discovery of new VAs (Leitinger Sec. III-D)."},
+              DiscoveryOptionsDescriptor());
+    d.Section(&O::recovery, {.key = "recovery", .doc = "Track-loss detection and restart (mirage)."},
+              TrackRecoveryOptionsDescriptor());
+    return d;
+  }();
+  return descriptor;
 }
+
+std::vector<std::string> Validate(const SlamOptions& options) { return SlamOptionsDescriptor().Validate(options); }
 
 namespace {
 

@@ -13,24 +13,72 @@ namespace {
 constexpr double kCircleSlackM = 0.05;
 }  // namespace
 
+const core::OptionsDescriptor<TrackRecoveryOptions>& TrackRecoveryOptionsDescriptor() {
+  using core::ValueRange;
+  using O = TrackRecoveryOptions;
+  static const auto descriptor = [] {
+    core::OptionsDescriptor<O> d("methods::slam::TrackRecoveryOptions");
+    d.Boolean(&O::enabled, {.key = "enabled", .doc = "Detect a lost track and restart it (mirage)."});
+    d.Number(&O::match_tolerance_m,
+             {.key = "match_tolerance_m",
+              .unit = "m",
+              .range = ValueRange::Positive(),
+              .doc = "A map point matches when a measured range lies within this distance of its expected range. 5 "
+                     "cm: about 2 sigma of a first-order reflection's range at 5 dB SINR, as in MINT."});
+    d.Integer(&O::los_candidates,
+              {.key = "los_candidates",
+               .range = ValueRange::Closed(1.0, 100.0),
+               .doc = "Measured ranges of each anchor, earliest first, tried as its LOS. 3: the LOS is the first range "
+                      "unless a clutter or noise peak came before it."});
+    d.Integer(&O::min_margin,
+              {.key = "min_margin",
+               .range = ValueRange::Closed(1.0, 1000.0),
+               .doc = "Matched map points by which a candidate must beat the estimate. 2: one chance match among ~15 "
+                      "clutter ranges per anchor and step is common, two at the same position are not."});
+    d.Integer(&O::min_margin_floor_plan,
+              {.key = "min_margin_floor_plan",
+               .range = ValueRange::Closed(1.0, 1000.0),
+               .doc = "Replaces min_margin when the map is a known floor plan's VAs, which score only where visible "
+                      "(about 35 per anchor: more chance matches). 4: only the two lost runs restart (seminar room, "
+                      "seeds 1-9); with 2 good tracks restart too."});
+    d.Integer(&O::floor_plan_watch_steps,
+              {.key = "floor_plan_watch_steps",
+               .unit = "steps",
+               .range = ValueRange::Closed(0.0, 1e6),
+               .doc = "With the floor plan's VAs the search (ray tracing every candidate, about 110 us a step) runs "
+                      "only this many steps after an anchor's LOS found no range, and while a pending chain continues "
+                      "(0: the miss step only). 10: both lost known-VA tracks restart, no good one does (seeds 1-9)."});
+    d.Integer(&O::lost_steps, {.key = "lost_steps",
+                               .unit = "steps",
+                               .range = ValueRange::Closed(1.0, 1e6),
+                               .doc = "Consecutive steps at which a candidate must win before the restart. 3."});
+    d.Number(&O::follow_gate_m,
+             {.key = "follow_gate_m",
+              .unit = "m",
+              .range = ValueRange::Positive(),
+              .doc = "The winning candidates of consecutive steps must lie within this distance of one another: a "
+                     "walker's step (0.05 m at 0.5 m/s and 10 Hz) plus the candidates' scatter. 0.3 m."});
+    d.Number(&O::max_jump_m,
+             {.key = "max_jump_m",
+              .unit = "m",
+              .range = ValueRange::Positive(),
+              .doc = "Candidates farther than this from the estimate are not considered. 3 m: a track on the mirror "
+                     "image of the two-anchor geometry is about 1 m off in the seminar room; farther candidates are "
+                     "chance intersections of reflections and clutter."});
+    d.Number(&O::max_speed_mps,
+             {.key = "max_speed_mps",
+              .unit = "m/s",
+              .range = ValueRange::Positive(),
+              .doc = "A chain of winning candidates moving faster than this from its first step to its last is chance "
+                     "intersections, not a walker: no restart. 1.5 m/s, a brisk walk; good restarts moved at "
+                     "0.42-0.99 m/s (seminar room)."});
+    return d;
+  }();
+  return descriptor;
+}
+
 std::vector<std::string> Validate(const TrackRecoveryOptions& options) {
-  std::vector<std::string> problems;
-  if (!(options.match_tolerance_m > 0.0) || !std::isfinite(options.match_tolerance_m)) {
-    problems.push_back("match_tolerance_m must be > 0 m");
-  }
-  if (options.los_candidates < 1) problems.push_back("los_candidates must be >= 1");
-  if (options.min_margin < 1) problems.push_back("min_margin must be >= 1");
-  if (options.min_margin_floor_plan < 1) problems.push_back("min_margin_floor_plan must be >= 1");
-  if (options.floor_plan_watch_steps < 0) problems.push_back("floor_plan_watch_steps must be >= 0");
-  if (options.lost_steps < 1) problems.push_back("lost_steps must be >= 1");
-  if (!(options.follow_gate_m > 0.0) || !std::isfinite(options.follow_gate_m)) {
-    problems.push_back("follow_gate_m must be > 0 m");
-  }
-  if (!(options.max_jump_m > 0.0) || !std::isfinite(options.max_jump_m)) problems.push_back("max_jump_m must be > 0 m");
-  if (!(options.max_speed_mps > 0.0) || !std::isfinite(options.max_speed_mps)) {
-    problems.push_back("max_speed_mps must be > 0 m/s");
-  }
-  return problems;
+  return TrackRecoveryOptionsDescriptor().Validate(options);
 }
 
 int CountMatches(const Vec2& p_m, std::span<const MapPoint> map, std::span<const core::AnchorRanges> measurements,

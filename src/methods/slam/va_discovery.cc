@@ -13,47 +13,150 @@
 
 namespace mirage::methods::slam {
 
-std::vector<std::string> Validate(const DiscoveryOptions& o) {
-  std::vector<std::string> problems;
-  const auto positive = [&](double v, const char* name) {
-    if (!(v > 0.0) || !std::isfinite(v)) problems.push_back(std::string(name) + " must be > 0 m");
-  };
-  const auto at_least = [&](int v, int min, const char* name) {
-    if (v < min) problems.push_back(std::string(name) + " must be >= " + std::to_string(min));
-  };
-  positive(o.max_agent_sigma_m, "max_agent_sigma_m");
-  positive(o.group_gate_m, "group_gate_m");
-  at_least(o.group_max_gap_steps, 0, "group_max_gap_steps");
-  at_least(o.group_size, 3, "group_size");
-  if (!(o.min_group_baseline_m >= 0.0) || !std::isfinite(o.min_group_baseline_m)) {
-    problems.push_back("min_group_baseline_m must be >= 0 m");
-  }
-  positive(o.max_fit_rms_m, "max_fit_rms_m");
-  positive(o.rls_initial_sigma_m, "rls_initial_sigma_m");
-  positive(o.rls_range_sigma_m, "rls_range_sigma_m");
-  at_least(o.min_measurements, 1, "min_measurements");
-  at_least(o.resolve_misses, 1, "resolve_misses");
-  if (!(o.min_turn_m >= 0.0) || !std::isfinite(o.min_turn_m)) problems.push_back("min_turn_m must be >= 0 m");
-  positive(o.merge_hypotheses_m, "merge_hypotheses_m");
-  at_least(o.candidate_timeout_steps, 1, "candidate_timeout_steps");
-  at_least(o.candidate_max_age_steps, 1, "candidate_max_age_steps");
-  positive(o.verify_fit_rms_m, "verify_fit_rms_m");
-  if (!(o.verify_min_inlier_fraction > 0.0 && o.verify_min_inlier_fraction <= 1.0)) {
-    problems.push_back("verify_min_inlier_fraction must be in (0, 1]");
-  }
-  if (!(o.verify_mirror_ratio >= 1.0) || !std::isfinite(o.verify_mirror_ratio)) {
-    problems.push_back("verify_mirror_ratio must be >= 1");
-  }
-  positive(o.verify_max_sigma_m, "verify_max_sigma_m");
-  if (!(o.verify_far_sigma_per_m >= 0.0) || !std::isfinite(o.verify_far_sigma_per_m)) {
-    problems.push_back("verify_far_sigma_per_m must be >= 0");
-  }
-  positive(o.verify_far_fit_rms_m, "verify_far_fit_rms_m");
-  if (!(o.duplicate_radius_m >= 0.0) || !std::isfinite(o.duplicate_radius_m)) {
-    problems.push_back("duplicate_radius_m must be >= 0 m");
-  }
-  for (auto& problem : Validate(o.sweep)) problems.push_back(std::move(problem));
-  return problems;
+const core::OptionsDescriptor<DiscoveryOptions>& DiscoveryOptionsDescriptor() {
+  using core::ValueRange;
+  using O = DiscoveryOptions;
+  static const auto descriptor = [] {
+    const ValueRange fraction_range = ValueRange::Closed(core::kTinyOption, 1.0);
+    core::OptionsDescriptor<O> d("methods::slam::DiscoveryOptions");
+    d.Boolean(&O::enabled, {.key = "enabled", .doc = "Discover new VAs at all."});
+    d.Number(&O::max_agent_sigma_m,
+             {.key = "max_agent_sigma_m",
+              .unit = "m",
+              .range = ValueRange::Positive(),
+              .doc = "A step's ranges are used only while the agent's position std along its worst direction is at "
+                     "most this (mirage; e.g. 100 switches it off). 0.1 m: at a 26 cm std a mirror VA was promoted "
+                     "and held the track 1-3 m off (seminar room, seed 4); 0.05 m drops good steps."});
+    d.Number(&O::group_gate_m, {.key = "group_gate_m",
+                                .unit = "m",
+                                .range = ValueRange::Positive(),
+                                .doc = "A range continues a group within this distance of the group's last range. "
+                                       "0.07 m = v_max dT + 2 cm (a gap in the thesis; digest Sec. 3.3)."});
+    d.Integer(
+        &O::group_max_gap_steps,
+        {.key = "group_max_gap_steps",
+         .unit = "steps",
+         .range = ValueRange::Closed(0.0, 1e5),
+         .doc = "A group that misses more than this many consecutive steps is dropped (a gap in the thesis). 3."});
+    d.Integer(&O::group_size,
+              {.key = "group_size",
+               .range = ValueRange::Closed(3.0, 1e5),
+               .doc = "Ranges in a group before the range-Bancroft initialisation. The thesis's 3 (Lafer Tab. 4.1) "
+                      "span 10 cm at 5 cm steps and land metres off; 10 (about 0.5 m of walking), as the digest "
+                      "suggests."});
+    d.Number(&O::min_group_baseline_m, {.key = "min_group_baseline_m",
+                                        .unit = "m",
+                                        .range = ValueRange::NonNegative(),
+                                        .doc = "The group's agent positions must span at least this distance. 0.3 m."});
+    d.Number(&O::max_fit_rms_m,
+             {.key = "max_fit_rms_m",
+              .unit = "m",
+              .range = ValueRange::Positive(),
+              .doc = "Largest RMS range residual of a Bancroft solution over its group: ranges that no single point "
+                     "explains (diffuse peaks chained by chance) are no VA. 3 cm."});
+    d.Number(&O::rls_initial_sigma_m,
+             {.key = "rls_initial_sigma_m",
+              .unit = "m",
+              .range = ValueRange::Positive(),
+              .doc = "Initial RLS standard deviation of each hypothesis: P_0 = sigma^2 I, 10 m^2 in Lafer Tab. 4.1, "
+                     "i.e. about 3.16 m."});
+    d.Number(&O::rls_range_sigma_m,
+             {.key = "rls_range_sigma_m",
+              .unit = "m",
+              .range = ValueRange::Positive(),
+              .doc = "Range standard deviation in the RLS: R_z = 0.04 m^2 in Lafer Tab. 4.1, i.e. "
+                     "0.2 m."});
+    d.Integer(&O::min_measurements,
+              {.key = "min_measurements",
+               .range = ValueRange::Closed(1.0, 1e5),
+               .doc = "Measurements (group plus candidate updates) a hypothesis needs before promotion: N_rls = 10 "
+                      "(Lafer Tab. 4.1)."});
+    d.Number(
+        &O::min_turn_m,
+        {.key = "min_turn_m",
+         .unit = "m",
+         .range = ValueRange::NonNegative(),
+         .doc = "A candidate is promoted only when its agent positions extend this far across their principal "
+                "direction: a straight walk cannot tell a VA from its mirror image (Leitinger footnote 4). 0.2 m."});
+    d.Boolean(&O::verify, {.key = "verify",
+                           .doc = "Promotion by the batch check (mirage); false: the thesis's rule, promotion once the "
+                                  "RLS association has dismissed one hypothesis."});
+    d.Number(&O::verify_fit_rms_m,
+             {.key = "verify_fit_rms_m",
+              .unit = "m",
+              .range = ValueRange::Positive(),
+              .doc = "Promotion check: largest RMS residual of the batch fit over the candidate's ranges (outliers "
+                     "excluded). Range noise (1-2 cm) and the agent's error (about 3 cm) add to 3.6 cm; 4.5 cm leaves "
+                     "25 % margin."});
+    d.Number(&O::verify_min_inlier_fraction,
+             {.key = "verify_min_inlier_fraction",
+              .range = fraction_range,
+              .doc = "Promotion check: smallest fraction of the candidate's ranges within the fit's outlier gate; a "
+                     "few ranges of another path may be chained in, many mean no single point. 0.85."});
+    d.Number(&O::verify_mirror_ratio,
+             {.key = "verify_mirror_ratio",
+              .range = ValueRange::Closed(1.0, core::kHugeOption),
+              .doc = "Promotion check: the mirror solution's truncated RMS residual must be at least this many times "
+                     "the winner's, else the pair is still ambiguous. 1.5: true VAs reach it after about 0.5 m of "
+                     "walking across (seminar room)."});
+    d.Number(&O::verify_max_sigma_m,
+             {.key = "verify_max_sigma_m",
+              .unit = "m",
+              .range = ValueRange::Positive(),
+              .doc = "Promotion check: largest standard deviation of the fitted point along its worst direction. 5 "
+                     "cm, the accuracy the agent is tracked to: a VA known worse would pull it."});
+    d.Number(&O::verify_far_sigma_per_m,
+             {.key = "verify_far_sigma_per_m",
+              .range = ValueRange::NonNegative(),
+              .doc = "Promotion of far VAs (mirage; 0 = off): a fit whose std exceeds verify_max_sigma_m still passes "
+                     "if the std is at most this fraction of its distance from the agent and its RMS at most "
+                     "verify_far_fit_rms_m. 1.5 %, just under 1 deg across the VA's direction (1 % gave nearly the "
+                     "same)."});
+    d.Number(&O::verify_far_fit_rms_m,
+             {.key = "verify_far_fit_rms_m",
+              .unit = "m",
+              .range = ValueRange::Positive(),
+              .doc = "RMS limit of the far-VA rule. 2.5 cm: right far VAs fit to about 2 cm; without the limit a false "
+                     "far VA was promoted and a run diverged, and 3 cm was worse on trajectory 1."});
+    d.Integer(
+        &O::resolve_misses,
+        {.key = "resolve_misses",
+         .range = ValueRange::Closed(1.0, 1e5),
+         .doc = "Consecutive steps in which a hypothesis failed the cut-off while its sibling passed, after which "
+                "it is dismissed (a gap in the thesis). 3."});
+    d.Number(&O::merge_hypotheses_m,
+             {.key = "merge_hypotheses_m",
+              .unit = "m",
+              .range = ValueRange::Positive(),
+              .doc = "Two hypotheses closer than this are the same point (the group already contained a turn) and the "
+                     "better-fitting one is kept. 0.3 m."});
+    d.Integer(&O::candidate_timeout_steps,
+              {.key = "candidate_timeout_steps",
+               .unit = "steps",
+               .range = ValueRange::Closed(1.0, 1e6),
+               .doc = "A candidate without a supporting range for this many steps is dropped (the digest's time-out, "
+                      "Sec. 2.10). 20."});
+    d.Integer(&O::candidate_max_age_steps,
+              {.key = "candidate_max_age_steps",
+               .unit = "steps",
+               .range = ValueRange::Closed(1.0, 1e6),
+               .doc = "A candidate still ambiguous after this many steps is dropped: a straight walk never resolves "
+                      "it, and an old pair's evidence comes from positions far behind. 150."});
+    d.Number(&O::duplicate_radius_m,
+             {.key = "duplicate_radius_m",
+              .unit = "m",
+              .range = ValueRange::NonNegative(),
+              .doc = "No new candidate within this distance of a candidate hypothesis or an active VA of the same "
+                     "anchor: the same feature found twice (the digest's merge radius, Sec. 2.10). 0.2 m."});
+    d.Section(&O::sweep, {.key = "sweep", .doc = "Stage D' (mirage): the sweep for far VAs."},
+              SweepOptionsDescriptor());
+    return d;
+  }();
+  return descriptor;
+}
+
+std::vector<std::string> Validate(const DiscoveryOptions& options) {
+  return DiscoveryOptionsDescriptor().Validate(options);
 }
 
 VaDiscovery::VaDiscovery(const DiscoveryOptions& options)

@@ -8,19 +8,47 @@
 
 namespace mirage::methods::slam {
 
-std::vector<std::string> Validate(const SweepOptions& o) {
-  std::vector<std::string> problems;
-  if (o.window_steps < 3) problems.push_back("sweep.window_steps must be >= 3");
-  if (o.every_steps < 1) problems.push_back("sweep.every_steps must be >= 1");
-  if (!(o.min_baseline_m > 0.0) || !std::isfinite(o.min_baseline_m)) {
-    problems.push_back("sweep.min_baseline_m must be > 0 m");
-  }
-  if (!(o.gate_m > 0.0) || !std::isfinite(o.gate_m)) problems.push_back("sweep.gate_m must be > 0 m");
-  if (!(o.min_support_fraction > 0.0 && o.min_support_fraction <= 1.0)) {
-    problems.push_back("sweep.min_support_fraction must be in (0, 1]");
-  }
-  return problems;
+const core::OptionsDescriptor<SweepOptions>& SweepOptionsDescriptor() {
+  using core::ValueRange;
+  using O = SweepOptions;
+  static const auto descriptor = [] {
+    core::OptionsDescriptor<O> d("methods::slam::SweepOptions");
+    d.Boolean(&O::enabled, {.key = "enabled",
+                            .doc = "Run the sweep (stage D', mirage): a consensus search for far VAs over the last "
+                                   "steps' unexplained ranges."});
+    d.Integer(&O::window_steps, {.key = "window_steps",
+                                 .unit = "steps",
+                                 .range = ValueRange::Closed(3.0, 1e5),
+                                 .doc = "Steps of ranges searched. 60 steps are 3 m of walking at 0.5 m/s and 0.1 s."});
+    d.Integer(&O::every_steps,
+              {.key = "every_steps",
+               .unit = "steps",
+               .range = ValueRange::Closed(1.0, 1e5),
+               .doc = "The sweep runs for an anchor every this many steps, the anchors on different steps. A search "
+                      "costs about 130 us at 15 unexplained ranges per step; 10 instead of 5 halves the cost for a "
+                      "p90 0-0.3 cm worse in the seminar room."});
+    d.Number(&O::min_baseline_m, {.key = "min_baseline_m",
+                                  .unit = "m",
+                                  .range = ValueRange::Positive(),
+                                  .doc = "The buffered agent positions must span at least this distance: two circles "
+                                         "intersect well only over a long baseline. 1 m."});
+    d.Number(&O::gate_m, {.key = "gate_m",
+                          .unit = "m",
+                          .range = ValueRange::Positive(),
+                          .doc = "A range supports a point within this distance of its predicted range: range noise "
+                                 "(1-2 cm) plus the agent's error (2-3 cm). 4 cm."});
+    d.Number(&O::min_support_fraction,
+             {.key = "min_support_fraction",
+              .range = ValueRange::Closed(core::kTinyOption, 1.0),
+              .doc = "Smallest fraction of the buffered steps that must support a point. A wrong point collects about "
+                     "10 % of the steps within a 4 cm gate, a VA extracted at 80 % of the steps 80 %; 0.5 and 0.7 "
+                     "gave p90 within 0.5 cm of 0.6 (seminar room)."});
+    return d;
+  }();
+  return descriptor;
 }
+
+std::vector<std::string> Validate(const SweepOptions& options) { return SweepOptionsDescriptor().Validate(options); }
 
 VaSweep::VaSweep(const SweepOptions& options, int min_measurements, double exclusion_radius_m)
     : options_(options), min_measurements_(min_measurements), exclusion_radius_m_(exclusion_radius_m) {}

@@ -17,6 +17,7 @@
 
 #include <gtest/gtest.h>
 
+#include "core/options_descriptor_expectations.h"
 #include "methods/mint/square_room.h"
 #include "mirage/core/constants.h"
 #include "mirage/geometry/trajectory.h"
@@ -715,13 +716,25 @@ TEST(SlamTracker, ValidateNamesTheBadOption) {
   options.discovery.group_size = 2;
   const auto problems = Validate(options);
   ASSERT_EQ(problems.size(), 7u);
+  // In the order of the members (the descriptor's).
   EXPECT_EQ(problems[0].rfind("cutoff_m", 0), 0u);
-  EXPECT_EQ(problems[1].rfind("los_reacquire_m", 0), 0u);
-  EXPECT_EQ(problems[2].rfind("no_visibility_model_gate_chi2", 0), 0u);
-  EXPECT_EQ(problems[3].rfind("nis_window_updates", 0), 0u);
-  EXPECT_EQ(problems[4].rfind("discovered_va_walk_m_per_sqrt_s", 0), 0u);
-  EXPECT_EQ(problems[5].rfind("blocked_amplitude_probability", 0), 0u);
+  EXPECT_EQ(problems[1].rfind("no_visibility_model_gate_chi2", 0), 0u);
+  EXPECT_EQ(problems[2].rfind("blocked_amplitude_probability", 0), 0u);
+  EXPECT_EQ(problems[3].rfind("los_reacquire_m", 0), 0u);
+  EXPECT_EQ(problems[4].rfind("nis_window_updates", 0), 0u);
+  EXPECT_EQ(problems[5].rfind("discovered_va_walk_m_per_sqrt_s", 0), 0u);
   EXPECT_EQ(problems[6].rfind("discovery.group_size", 0), 0u);
+}
+
+TEST(SlamOptionsDescriptor, AcceptsTheDefaultsAndDescribesEveryMember) {
+  test::ExpectDescribesEveryMember(
+      SlamOptionsDescriptor(),
+      {"cutoff_m", "range_sigma_m", "initial_position_sigma_m", "initial_velocity_sigma_mps", "prior_max_order",
+       "prior_va_sigma_m", "prior_visibility", "reassociate", "innovation_gate_chi2", "no_visibility_model_gate_chi2",
+       "va_filter", "va_filter_sigma_m", "va_filter_keeps_associating", "va_filter_anchors",
+       "amplitude_gate_probability", "startup_amplitude_k_factor", "blocked_amplitude_probability", "shadow_cone_deg",
+       "shadow_sigma_m", "los_reacquire_m", "nis_window_updates", "discovered_va_walk_m_per_sqrt_s", "joseph_update",
+       "motion", "max_speed_mps", "variance", "discovery", "recovery"});
 }
 
 }  // namespace

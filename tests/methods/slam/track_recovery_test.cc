@@ -11,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include "core/options_descriptor_expectations.h"
 #include "mirage/core/rng.h"
 
 namespace mirage::methods::slam {
@@ -181,6 +182,13 @@ TEST(TrackRecoveryOptions, ValidateNamesEachBadValue) {
   o.floor_plan_watch_steps = -1;
   o.max_speed_mps = 0.0;
   EXPECT_EQ(Validate(o).size(), 9u);
+}
+
+TEST(TrackRecoveryOptionsDescriptor, AcceptsTheDefaultsAndDescribesEveryMember) {
+  test::ExpectDescribesEveryMember(TrackRecoveryOptionsDescriptor(),
+                                   {"enabled", "match_tolerance_m", "los_candidates", "min_margin",
+                                    "min_margin_floor_plan", "floor_plan_watch_steps", "lost_steps", "follow_gate_m",
+                                    "max_jump_m", "max_speed_mps"});
 }
 
 }  // namespace

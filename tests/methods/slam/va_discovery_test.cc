@@ -18,6 +18,7 @@
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
+#include "core/options_descriptor_expectations.h"
 #include "mirage/core/constants.h"
 #include "mirage/core/rng.h"
 #include "mirage/geometry/trajectory.h"
@@ -270,6 +271,16 @@ TEST(VaDiscovery, ValidateNamesEachSweepOption) {
   EXPECT_NE(problem_with([](SweepOptions& o) { o.gate_m = -1.0; }).find("sweep.gate_m"), std::string::npos);
   EXPECT_NE(problem_with([](SweepOptions& o) { o.min_support_fraction = 1.5; }).find("sweep.min_support_fraction"),
             std::string::npos);
+}
+
+TEST(DiscoveryOptionsDescriptor, AcceptsTheDefaultsAndDescribesEveryMember) {
+  test::ExpectDescribesEveryMember(
+      DiscoveryOptionsDescriptor(),
+      {"enabled", "max_agent_sigma_m", "group_gate_m", "group_max_gap_steps", "group_size", "min_group_baseline_m",
+       "max_fit_rms_m", "rls_initial_sigma_m", "rls_range_sigma_m", "min_measurements", "min_turn_m", "verify",
+       "verify_fit_rms_m", "verify_min_inlier_fraction", "verify_mirror_ratio", "verify_max_sigma_m",
+       "verify_far_sigma_per_m", "verify_far_fit_rms_m", "resolve_misses", "merge_hypotheses_m",
+       "candidate_timeout_steps", "candidate_max_age_steps", "duplicate_radius_m", "sweep"});
 }
 
 }  // namespace

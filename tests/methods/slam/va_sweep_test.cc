@@ -12,6 +12,7 @@
 
 #include <gtest/gtest.h>
 
+#include "core/options_descriptor_expectations.h"
 #include "mirage/core/rng.h"
 
 namespace mirage::methods::slam {
@@ -123,6 +124,11 @@ TEST(VaSweep, ResetForgetsTheBuffers) {
   EXPECT_EQ(sweep.buffered_steps(0), 0u);
   EXPECT_EQ(sweep.buffered_ranges(0), 0u);
   EXPECT_FALSE(sweep.Search(40, 0, {}));
+}
+
+TEST(SweepOptionsDescriptor, AcceptsTheDefaultsAndDescribesEveryMember) {
+  test::ExpectDescribesEveryMember(SweepOptionsDescriptor(), {"enabled", "window_steps", "every_steps",
+                                                              "min_baseline_m", "gate_m", "min_support_fraction"});
 }
 
 }  // namespace

@@ -42,6 +42,7 @@
 #include <Eigen/SparseCore>
 
 #include "mirage/core/measurements.h"
+#include "mirage/core/options_descriptor.h"
 #include "mirage/estimation/block_update.h"
 #include "mirage/estimation/ekf_update.h"
 #include "mirage/estimation/gates/rician_gate.h"
@@ -228,7 +229,11 @@ struct SlamOptions {
   TrackRecoveryOptions recovery;
 };
 
-/// Problems with the options, empty if valid.
+/// The options' descriptor (keys, units, ranges, docs; core/options_descriptor.h). The number of
+/// VAs that prior_max_order gives depends on the floor plan and is checked where the plan is known.
+const core::OptionsDescriptor<SlamOptions>& SlamOptionsDescriptor();
+
+/// Problems with the options ("key: message"), empty if valid; see the descriptor.
 std::vector<std::string> Validate(const SlamOptions& options);
 
 /// Where a map VA came from.

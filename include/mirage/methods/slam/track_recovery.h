@@ -30,6 +30,7 @@
 #include <vector>
 
 #include "mirage/core/measurements.h"
+#include "mirage/core/options_descriptor.h"
 #include "mirage/core/types.h"
 
 namespace mirage::methods::slam {
@@ -83,7 +84,10 @@ struct TrackRecoveryOptions {
   double max_speed_mps = 1.5;
 };
 
-/// Problems with the options, empty if valid.
+/// The options' descriptor (keys, units, ranges, docs; core/options_descriptor.h).
+const core::OptionsDescriptor<TrackRecoveryOptions>& TrackRecoveryOptionsDescriptor();
+
+/// Problems with the options ("key: message"), empty if valid; see the descriptor.
 std::vector<std::string> Validate(const TrackRecoveryOptions& options);
 
 /// A point of the map as the recovery sees it: whose ranges it explains and where it is.

@@ -32,6 +32,7 @@
 #include <Eigen/Core>
 
 #include "mirage/core/measurements.h"
+#include "mirage/core/options_descriptor.h"
 #include "mirage/core/types.h"
 #include "mirage/methods/slam/discovery_sample.h"
 #include "mirage/methods/slam/va_sweep.h"
@@ -133,7 +134,10 @@ struct DiscoveryOptions {
   SweepOptions sweep;
 };
 
-/// Problems with the options, empty if valid.
+/// The options' descriptor (keys, units, ranges, docs; core/options_descriptor.h).
+const core::OptionsDescriptor<DiscoveryOptions>& DiscoveryOptionsDescriptor();
+
+/// Problems with the options ("key: message"), empty if valid; see the descriptor.
 std::vector<std::string> Validate(const DiscoveryOptions& options);
 
 /// One mirror hypothesis of a candidate, tracked by RLS.

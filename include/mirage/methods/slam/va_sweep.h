@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "mirage/core/measurements.h"
+#include "mirage/core/options_descriptor.h"
 #include "mirage/core/types.h"
 #include "mirage/estimation/init/range_consensus.h"
 #include "mirage/methods/slam/discovery_sample.h"
@@ -48,7 +49,11 @@ struct SweepOptions {
   double min_support_fraction = 0.6;
 };
 
-/// Problems with the options ("sweep.<key> ..."), empty if valid.
+/// The options' descriptor (keys, units, ranges, docs; core/options_descriptor.h).
+const core::OptionsDescriptor<SweepOptions>& SweepOptionsDescriptor();
+
+/// Problems with the options ("key: message"; DiscoveryOptions' Validate() prefixes "sweep."),
+/// empty if valid; see the descriptor.
 std::vector<std::string> Validate(const SweepOptions& options);
 
 /// What a search found: the supporting ranges and the two starting points of a candidate pair
