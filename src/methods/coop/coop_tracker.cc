@@ -44,28 +44,89 @@ estimation::RangeVarianceOptions CoopOptions::DefaultVariance() {
   return v;
 }
 
-std::vector<std::string> Validate(const CoopOptions& o) {
-  std::vector<std::string> problems;
-  const auto positive = [&](double v, const char* what) {
-    if (!(v > 0.0) || !std::isfinite(v)) problems.push_back(fmt::format("{} must be > 0", what));
-  };
-  positive(o.agent_sigma_m, "agent_sigma_m");
-  positive(o.velocity_sigma_mps, "velocity_sigma_mps");
-  positive(o.wall_sigma_m, "wall_sigma_m");
-  positive(o.max_speed_mps, "max_speed_mps");
-  if (o.max_order < 1 || o.max_order > 2) problems.push_back("max_order must be 1 or 2");
-  if (!(o.cutoff_m >= 0.0) || !std::isfinite(o.cutoff_m)) problems.push_back("cutoff_m must be >= 0");
-  if (!(o.extraction_factor >= 1.0) || !std::isfinite(o.extraction_factor)) {
-    problems.push_back("extraction_factor must be >= 1");
-  }
-  if (!(o.self_gate_m >= 0.0) || !std::isfinite(o.self_gate_m)) problems.push_back("self_gate_m must be >= 0");
-  if (!(o.innovation_gate_sigma >= 0.0) || !std::isfinite(o.innovation_gate_sigma)) {
-    problems.push_back("innovation_gate_sigma must be >= 0");
-  }
-  if (!(o.antenna_spacing_m >= 0.0) || !std::isfinite(o.antenna_spacing_m)) problems.push_back("antenna_spacing_m must be >= 0");
-  for (auto& p : estimation::Validate(o.variance)) problems.push_back("variance: " + p);
-  return problems;
+const core::OptionsDescriptor<CoopOptions>& CoopOptionsDescriptor() {
+  using core::ValueRange;
+  using O = CoopOptions;
+  static const auto descriptor = [] {
+    const ValueRange self_gate_range = ValueRange::NonNegative();
+    const ValueRange spacing_range = ValueRange::Closed(0.0, 0.5);
+    core::OptionsDescriptor<O> d("methods::coop::CoopOptions");
+    d.Number(&O::agent_sigma_m, {.key = "agent_sigma_m",
+                                 .unit = "m",
+                                 .range = ValueRange::Positive(),
+                                 .doc = "Initial position standard deviation sigma_agent. 0.03 m (Kulmer Sec. IV-B)."});
+    d.Number(&O::velocity_sigma_mps,
+             {.key = "velocity_sigma_mps",
+              .unit = "m/s",
+              .range = ValueRange::Positive(),
+              .doc = "Initial velocity standard deviation; the agents start at rest (not stated in the paper). 0.025 "
+                     "m/s = v_max at one step per second."});
+    d.Number(&O::wall_sigma_m,
+             {.key = "wall_sigma_m",
+              .unit = "m",
+              .range = ValueRange::LeftOpen(0.0, 1.0),
+              .doc = "Initial standard deviation sigma_seg of each wall's normal offset. 3 mm; the paper also shows 1 "
+                     "and 10 mm: larger adapts faster, smaller is more robust."});
+    d.Boolean(&O::wall_update, {.key = "wall_update",
+                                .doc = "Walls in the state (\"w su\"); false keeps them fixed at the provided plan "
+                                       "(\"w/o su\")."});
+    d.Number(&O::max_speed_mps,
+             {.key = "max_speed_mps",
+              .unit = "m/s",
+              .range = ValueRange::Positive(),
+              .doc = "Maximum speed v_max; the white-acceleration std is v_max / (3 dt). 0.025 m per "
+                     "1 s step (Kulmer Sec. IV-B)."});
+    d.Integer(&O::max_order, {.key = "max_order",
+                              .range = ValueRange::Closed(1.0, 2.0),
+                              .doc = "Highest reflection order of the expected paths. 2, as in the paper."});
+    d.Number(&O::cutoff_m, {.key = "cutoff_m",
+                            .unit = "m",
+                            .range = ValueRange::NonNegative(),
+                            .doc = "Association cut-off d_c; 0 means c T_p of the pulse (Kulmer Sec. IV-B)."});
+    d.Number(&O::extraction_factor, {.key = "extraction_factor",
+                                     .range = ValueRange::Closed(1.0, 100.0),
+                                     .doc = "Components extracted per link = round(factor |K|), |K| the paths expected "
+                                            "on the link. 1.5 (Kulmer Sec. IV-B)."});
+    d.Number(&O::self_gate_m, {.key = "self_gate_m",
+                               .unit = "m",
+                               .range = self_gate_range,
+                               .doc = "Extracted self-link ranges shorter than this are the antenna coupling and are "
+                                      "dropped; it must exceed antenna_spacing_m, where the coupling arrives. 0.3 m."});
+    d.Number(&O::innovation_gate_sigma,
+             {.key = "innovation_gate_sigma",
+              .range = ValueRange::Closed(0.0, 100.0),
+              .doc = "Drop an associated range whose innovation exceeds this many standard deviations of its predicted "
+                     "innovation; 0 = off (the paper relies on d_c alone). 3, our addition."});
+    d.Section(&O::variance,
+              {.key = "variance",
+               .doc = "SINR and range variance per MPC (Kulmer Sec. III-C), with the cooperative defaults of "
+                      "CoopOptions::DefaultVariance() instead of Lafer's: a window of 0.1-0.2 m of track, 5 samples, "
+                      "R_0 = 0.07 m, a 5 mm floor, no overlap distance."},
+              estimation::RangeVarianceOptionsDescriptor());
+    d.Boolean(&O::anchor_links,
+              {.key = "anchor_links",
+               .doc = "Every agent also measures the channel from the world's first anchor (the anchor variants of "
+                      "Kulmer Sec. IV-D); off: the paper's anchorless case."});
+    d.Number(&O::antenna_spacing_m,
+             {.key = "antenna_spacing_m",
+              .unit = "m",
+              .range = spacing_range,
+              .doc = "Distance between an agent's transmit and receive antennas, side by side along x. 5 cm, as on the "
+                     "paper's measurement trolley."});
+    d.Check("self_gate_m > antenna_spacing_m when antenna_spacing_m > 0", [=](const O& o) -> std::vector<std::string> {
+      if (!(o.antenna_spacing_m > 0.0) || o.self_gate_m > o.antenna_spacing_m ||
+          !self_gate_range.Contains(o.self_gate_m) || !spacing_range.Contains(o.antenna_spacing_m)) {
+        return {};
+      }
+      return {"self_gate_m: " + core::FormatNumber(o.self_gate_m) + " m must exceed antenna_spacing_m (" +
+              core::FormatNumber(o.antenna_spacing_m) + " m), where the TX-RX coupling of a self link arrives"};
+    });
+    return d;
+  }();
+  return descriptor;
 }
+
+std::vector<std::string> Validate(const CoopOptions& options) { return CoopOptionsDescriptor().Validate(options); }
 
 estimation::ConstantVelocityOptions CoopMotion(const CoopOptions& options, double dt_s) {
   estimation::ConstantVelocityOptions cv;

@@ -12,6 +12,7 @@
 
 #include <gtest/gtest.h>
 
+#include "core/options_descriptor_expectations.h"
 #include "mirage/core/rng.h"
 #include "mirage/geometry/image_source.h"
 
@@ -230,6 +231,31 @@ TEST(CoopTracker, RejectsInvalidOptionsAndMismatchedInput) {
   EXPECT_THROW(tracker.Initialize(std::vector<Vec2>{Vec2(1, 1)}, 0.0), std::invalid_argument);
   tracker.Initialize(std::vector<Vec2>{Vec2(1, 1), Vec2(2, 2)}, 0.0);
   EXPECT_THROW(tracker.Step(1.0, std::vector<const LinkSignal*>{}), std::invalid_argument);
+}
+
+TEST(CoopOptionsDescriptor, AcceptsTheDefaultsAndDescribesEveryMember) {
+  test::ExpectDescribesEveryMember(CoopOptionsDescriptor(),
+                                   {"agent_sigma_m", "velocity_sigma_mps", "wall_sigma_m", "wall_update",
+                                    "max_speed_mps", "max_order", "cutoff_m", "extraction_factor", "self_gate_m",
+                                    "innovation_gate_sigma", "variance", "anchor_links", "antenna_spacing_m"});
+}
+
+TEST(CoopOptionsDescriptor, KeepsTheCooperativeVarianceDefaults) {
+  const auto& defaults = CoopOptionsDescriptor().defaults().variance;
+  EXPECT_EQ(defaults.window_max_m, CoopOptions::DefaultVariance().window_max_m);
+  EXPECT_EQ(defaults.min_sigma_m, CoopOptions::DefaultVariance().min_sigma_m);
+  EXPECT_NE(defaults.window_max_m, estimation::RangeVarianceOptions{}.window_max_m);
+}
+
+TEST(CoopOptions, RejectsASelfGateThatDoesNotClearTheAntennaSpacing) {
+  CoopOptions o;
+  o.antenna_spacing_m = 0.04;
+  o.self_gate_m = 0.03;
+
+  EXPECT_EQ(Validate(o), std::vector<std::string>{"self_gate_m: 0.03 m must exceed antenna_spacing_m (0.04 m), where "
+                                                  "the TX-RX coupling of a self link arrives"});
+  o.antenna_spacing_m = 0.0;  // no coupling range to clear
+  EXPECT_TRUE(Validate(o).empty());
 }
 
 }  // namespace

@@ -35,6 +35,7 @@
 #include <vector>
 
 #include "mirage/core/medium.h"
+#include "mirage/core/options_descriptor.h"
 #include "mirage/core/types.h"
 #include "mirage/estimation/ekf_update.h"
 #include "mirage/estimation/measurement_row.h"
@@ -49,29 +50,30 @@ namespace mirage::methods::coop {
 
 /// Filter parameters (defaults from Kulmer et al. Sec. IV-B).
 struct CoopOptions {
-  /// Initial position standard deviation sigma_agent (m), > 0. 0.03 m.
+  /// Initial position standard deviation sigma_agent (m), in [1e-9, 1e9]. 0.03 m.
   double agent_sigma_m = 0.03;
-  /// Initial velocity standard deviation (m/s), > 0 [GAP: not stated]. The agents start at rest;
-  /// 0.025 m/s = v_max at one step per second.
+  /// Initial velocity standard deviation (m/s), in [1e-9, 1e9] [GAP: not stated]. The agents
+  /// start at rest; 0.025 m/s = v_max at one step per second.
   double velocity_sigma_mps = 0.025;
-  /// Initial standard deviation of each wall's normal offset sigma_seg (m), > 0. 3 mm (the paper
-  /// also shows 1 and 10 mm: larger adapts faster, smaller is more robust).
+  /// Initial standard deviation of each wall's normal offset sigma_seg (m), in (0, 1]. 3 mm (the
+  /// paper also shows 1 and 10 mm: larger adapts faster, smaller is more robust).
   double wall_sigma_m = 0.003;
   /// Walls in the state ("w su"); false keeps them fixed at the provided plan ("w/o su").
   bool wall_update = true;
-  /// Maximum speed v_max (m/s), > 0: sigma_a = v_max / (3 dt). 0.025 m per 1 s step.
+  /// Maximum speed v_max (m/s), in [1e-9, 1e9]: sigma_a = v_max / (3 dt). 0.025 m per 1 s step.
   double max_speed_mps = 0.025;
   /// Highest reflection order of the expected paths, 1 or 2 (the paper: 2).
   int max_order = 2;
-  /// Association cut-off d_c (m); 0 means c T_p of the pulse (Sec. IV-B).
+  /// Association cut-off d_c (m), in [0, 1e9]; 0 means c T_p of the pulse (Sec. IV-B).
   double cutoff_m = 0.0;
-  /// Components extracted per link = round(factor |K|), >= 1. 1.5 (Sec. IV-B).
+  /// Components extracted per link = round(factor |K|), in [1, 100]. 1.5 (Sec. IV-B).
   double extraction_factor = 1.5;
-  /// Extracted self-link ranges shorter than this are the antenna coupling (m), >= 0. 0.3 m.
+  /// Extracted self-link ranges shorter than this are the antenna coupling (m), in [0, 1e9] and
+  /// above antenna_spacing_m (where the coupling arrives) when that is > 0. 0.3 m.
   double self_gate_m = 0.3;
   /// Drop an associated range whose innovation exceeds this many standard deviations of its
-  /// predicted innovation (h P h^T + r)^(1/2); 0 = off (the paper relies on d_c alone). Our
-  /// addition [not in the paper]: 3.
+  /// predicted innovation (h P h^T + r)^(1/2), in [0, 100]; 0 = off (the paper relies on d_c
+  /// alone). Our addition [not in the paper]: 3.
   double innovation_gate_sigma = 3.0;
   /// SINR and range variance per MPC (Sec. III-C): window up to 0.2 m of track, default and
   /// fallback sigma 0.07 m (R_0). window_min_m 0.1 m and min_samples 5 are our choices [GAP].
@@ -79,14 +81,19 @@ struct CoopOptions {
   /// Every agent also measures the channel from the world's first anchor (Sec. IV-D, the
   /// "anchor" variants); off: no anchor at all, the paper's anchorless case.
   bool anchor_links = false;
-  /// Distance between an agent's transmit and receive antennas (m), >= 0: they sit side by side
-  /// along x (coop_link.h). 5 cm, as on the paper's measurement trolley.
+  /// Distance between an agent's transmit and receive antennas (m), in [0, 0.5]: they sit side by
+  /// side along x (coop_link.h). 5 cm, as on the paper's measurement trolley.
   double antenna_spacing_m = 0.05;
 
   static estimation::RangeVarianceOptions DefaultVariance();
 };
 
-/// Problems with the options, empty if valid.
+/// The options' descriptor (keys, units, ranges, docs, the self-gate check;
+/// core/options_descriptor.h). The number of paths that max_order gives depends on the floor
+/// plan and is checked where the plan is known.
+const core::OptionsDescriptor<CoopOptions>& CoopOptionsDescriptor();
+
+/// Problems with the options ("key: message"), empty if valid; see the descriptor.
 std::vector<std::string> Validate(const CoopOptions& options);
 
 /// The agents' constant-velocity model over a step of dt_s (s): sigma_a = v_max / (3 dt), so that
