@@ -21,18 +21,44 @@ const estimation::BlockType& VelocityType(bool planar) { return planar ? blocks:
 
 }  // namespace
 
-std::vector<std::string> Validate(const RangeEkfOptions& o) {
-  std::vector<std::string> problems;
-  const auto positive = [&](double v, const char* name, const char* unit) {
-    if (!(v > 0.0) || !std::isfinite(v)) problems.push_back(std::string(name) + " must be > 0 " + unit);
-  };
-  if (o.mode != "3d" && o.mode != "planar") problems.push_back("mode must be 3d or planar, got " + o.mode);
-  positive(o.range_sigma_m, "range_sigma_m", "m");
-  positive(o.initial_position_sigma_m, "initial_position_sigma_m", "m");
-  positive(o.initial_velocity_sigma_mps, "initial_velocity_sigma_mps", "m/s");
-  if (!(o.gate_chi2 >= 0.0) || !std::isfinite(o.gate_chi2)) problems.push_back("gate_chi2 must be >= 0");
-  for (const auto& p : estimation::Validate(o.motion)) problems.push_back("motion." + p);
-  return problems;
+const core::OptionsDescriptor<RangeEkfOptions>& RangeEkfOptionsDescriptor() {
+  using core::ValueRange;
+  using O = RangeEkfOptions;
+  static const auto descriptor = [] {
+    core::OptionsDescriptor<O> d("methods::range_ekf::RangeEkfOptions");
+    d.Choice(&O::mode,
+             {.key = "mode",
+              .doc = "3d: position and velocity in 3-D (anchors not coplanar, or coplanar with the agent below them); "
+                     "planar: x, y at the world's known agent height (a tag worn at a fixed height), which makes the "
+                     "height error zero."},
+             {"3d", "planar"});
+    d.Number(&O::range_sigma_m, {.key = "range_sigma_m",
+                                 .unit = "m",
+                                 .range = ValueRange::Above(0.0),
+                                 .doc = "Range standard deviation. 0.1 m, typical of UWB two-way ranging."});
+    d.Number(&O::gate_chi2, {.key = "gate_chi2",
+                             .range = ValueRange::AtLeast(0.0),
+                             .doc = "Chi-square gate on one range's innovation (1 degree of freedom); 0 = off. 9 = 3 "
+                                    "sigma of the innovation variance, 99.7 % of consistent ranges."});
+    d.Number(&O::initial_position_sigma_m,
+             {.key = "initial_position_sigma_m",
+              .unit = "m",
+              .range = ValueRange::Above(0.0),
+              .doc = "Position standard deviation of a given start point. 0.5 m: a start known to the room's scale. A "
+                     "self-initialised start uses its fix's covariance instead."});
+    d.Number(&O::initial_velocity_sigma_mps, {.key = "initial_velocity_sigma_mps",
+                                              .unit = "m/s",
+                                              .range = ValueRange::Above(0.0),
+                                              .doc = "Velocity standard deviation at the start, at rest. 1 m/s."});
+    d.Section(&O::motion, {.key = "motion", .doc = "Constant-velocity motion model of the agent."},
+              estimation::ConstantVelocityOptionsDescriptor());
+    return d;
+  }();
+  return descriptor;
+}
+
+std::vector<std::string> Validate(const RangeEkfOptions& options) {
+  return RangeEkfOptionsDescriptor().Validate(options);
 }
 
 RangeEkf::RangeEkf(const RangeEkfOptions& options, const World& world)

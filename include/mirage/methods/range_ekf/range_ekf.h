@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "mirage/core/options_descriptor.h"
 #include "mirage/estimation/motion/constant_velocity.h"
 #include "mirage/estimation/state.h"
 #include "mirage/methods/estimator.h"
@@ -38,7 +39,10 @@ struct RangeEkfOptions {
   estimation::ConstantVelocityOptions motion;
 };
 
-/// Problems with the options, empty if valid.
+/// The options' descriptor (keys, units, ranges, docs; core/options_descriptor.h).
+const core::OptionsDescriptor<RangeEkfOptions>& RangeEkfOptionsDescriptor();
+
+/// Problems with the options ("key: message"), empty if valid; see the descriptor.
 std::vector<std::string> Validate(const RangeEkfOptions& options);
 
 class RangeEkf final : public Estimator {
