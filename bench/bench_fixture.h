@@ -32,8 +32,10 @@ inline const SeminarRoomData& SeminarRoom() {
   static const SeminarRoomData data = [] {
     SeminarRoomData d;
     d.scenario = io::LoadScenario(std::string(MIRAGE_SOURCE_DIR) + "/examples/seminar_room.yaml");
-    const auto& config = d.scenario.mint;
-    d.vas = geometry::VirtualAnchorSet::Generate(config.anchors_m, config.plan, config.channel_max_order);
+    const auto& config = d.scenario.variants.front().experiment;
+    std::vector<Vec2> anchors_m;
+    for (const auto& a : config.anchors) anchors_m.push_back(a.position_m.head<2>());
+    d.vas = geometry::VirtualAnchorSet::Generate(anchors_m, config.plan, config.channel_max_order);
     d.synthesizer = std::make_unique<channel::CirSynthesizer>(config.channel);
     const auto& spec = config.trajectories.front();
     d.samples = geometry::SampleTrajectory(spec.waypoints_m, spec.speed_mps, spec.dt_s);
@@ -41,10 +43,10 @@ inline const SeminarRoomData& SeminarRoom() {
     core::Rng diffuse = rng.Substream("diffuse"), noise = rng.Substream("noise");
     for (const auto& s : d.samples) {
       std::vector<core::Cir> per_anchor;
-      for (int a = 0; a < static_cast<int>(config.anchors_m.size()); ++a) {
+      for (int a = 0; a < static_cast<int>(anchors_m.size()); ++a) {
         const auto paths = channel::ComputeSpecularPaths(d.vas, a, config.plan, s.position_m, config.channel.pulse.carrier_hz,
                                                          config.channel.medium);
-        const double los_m = (s.position_m - config.anchors_m[static_cast<std::size_t>(a)]).norm();
+        const double los_m = (s.position_m - anchors_m[static_cast<std::size_t>(a)]).norm();
         per_anchor.push_back(d.synthesizer->Synthesize(paths, los_m, diffuse, noise).cir);
       }
       d.cirs.push_back(std::move(per_anchor));

@@ -1,10 +1,9 @@
 // SPDX-License-Identifier: MIT
-// libFuzzer target for the scenario readers: any input must either load or be rejected with
+// libFuzzer target for the scenario reader: any input must either load or be rejected with
 // io::InputError; a crash, a hang, a sanitizer report, an out-of-memory or any other exception
-// is a bug. A loaded scenario also builds its VA sets, channel synthesizer and MPC extractor,
-// so that the size limits of the validation are exercised. Inputs with `method: coop` go to the
-// cooperative reader as well, which must then build the channel of its shortest and longest
-// variant pulse. Build and run: make fuzz.
+// is a bug. Every loaded variant (a grid gives several) also builds its VA sets, channel
+// synthesizer, MPC extractor and its method's estimator, so that the size limits of the
+// validation are exercised. Build and run: make fuzz.
 #include <unistd.h>
 
 #include <algorithm>
@@ -13,11 +12,11 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include "mirage/channel/cir_synthesizer.h"
 #include "mirage/dsp/mpc_extractor.h"
 #include "mirage/geometry/virtual_anchor.h"
-#include "mirage/io/coop_scenario.h"
 #include "mirage/io/input_error.h"
 #include "mirage/io/scenario.h"
 
@@ -46,32 +45,24 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   }
   try {
     const auto scenario = mirage::io::LoadScenario(ScratchPath());
-    const auto& config = scenario.mint;
-    (void)mirage::geometry::VirtualAnchorSet::Generate(config.anchors_m, config.plan, config.channel_max_order);
-    const mirage::channel::CirSynthesizer synthesizer(config.channel);
-    (void)mirage::dsp::MpcExtractor(config.mpc, synthesizer.pulse(), synthesizer.sample_count(),
-                                    config.channel.sample_period_s);
+    for (const auto& variant : scenario.variants) {
+      const auto& config = variant.experiment;
+      std::vector<mirage::Vec2> anchors_m;
+      for (const auto& a : config.anchors) anchors_m.push_back(a.position_m.head<2>());
+      (void)mirage::geometry::VirtualAnchorSet::Generate(anchors_m, config.plan, config.channel_max_order);
+      const mirage::channel::CirSynthesizer synthesizer(config.channel);
+      (void)mirage::dsp::MpcExtractor(config.mpc, synthesizer.pulse(), synthesizer.sample_count(),
+                                      config.channel.sample_period_s, config.channel.medium);
+      mirage::methods::World world;
+      for (const auto& a : config.anchors) world.anchors.push_back({a.id, a.position_m});
+      world.floor_plan = config.plan;
+      world.channel = config.channel;
+      world.mpc = config.mpc;
+      world.agents = {"fuzz"};
+      (void)config.method.create(world);
+    }
   } catch (const mirage::io::InputError&) {
     // Rejected with a message: the expected outcome for bad input.
-  }
-  if (mirage::io::IsCoopScenario(ScratchPath())) {
-    try {
-      const auto config = mirage::io::LoadCoopScenario(ScratchPath()).config;
-      // The channel is checked per pulse duration of the grid; the extremes bound the Nyquist
-      // limit and the window's padding.
-      const auto [shortest, longest] = std::minmax_element(
-          config.variants.begin(), config.variants.end(),
-          [](const auto& a, const auto& b) { return a.pulse_duration_s < b.pulse_duration_s; });
-      for (const double duration_s : {shortest->pulse_duration_s, longest->pulse_duration_s}) {
-        mirage::channel::ChannelOptions channel = config.channel;
-        channel.pulse.duration_s = duration_s;
-        const mirage::channel::CirSynthesizer synthesizer(channel);
-        (void)mirage::dsp::MpcExtractor(config.mpc, synthesizer.pulse(), synthesizer.sample_count(),
-                                        channel.sample_period_s);
-      }
-    } catch (const mirage::io::InputError&) {
-      // As above.
-    }
   }
   return 0;
 }

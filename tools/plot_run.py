@@ -1,9 +1,10 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: MIT
-"""Renders the picture of a `mirage run --plot FILE`: floor plan, anchors and VAs (for SLAM the
-true VAs and the estimated map of each trajectory's central run with 3-sigma ellipses), true and
-estimated trajectories with error ellipses (x20), and the error CDFs. Reads FILE.json written by
-the CLI. Usage: plot_run.py DATA.json OUT.png"""
+"""Renders the picture of a `mirage run --plot FILE`, for every method: floor plan (if any),
+anchors and the simulated channel's VAs with the method's map of each agent's central run
+(3-sigma ellipses), true and estimated tracks with error ellipses (x20), the error CDFs, and for a
+grid the mean error per step of every variant. Reads FILE.json written by the CLI.
+Usage: plot_run.py DATA.json OUT.png"""
 import json
 import sys
 
@@ -52,9 +53,16 @@ def main(data_path, out_path):
                                  fill=False, color=color, lw=0.8))
         ax.plot([], [], color=color, label=f"{traj['name']} (estimates, all runs)")
     ax.plot([], [], "k--", label="truth (central run)")
-    # The room, not a diverged run, sets the view.
-    walls = np.array([w[:4] for w in data["walls"]])
-    xs, ys = np.concatenate([walls[:, 0], walls[:, 2]]), np.concatenate([walls[:, 1], walls[:, 3]])
+    # The room, not a diverged run, sets the view; without a floor plan the anchors and truth do.
+    if data["walls"]:
+        walls = np.array([w[:4] for w in data["walls"]])
+        xs, ys = np.concatenate([walls[:, 0], walls[:, 2]]), np.concatenate([walls[:, 1], walls[:, 3]])
+    else:
+        points = [[a[0], a[1]] for a in data["anchors"]]
+        for traj in data["trajectories"]:
+            points += traj["truth"]
+        points = np.array(points)
+        xs, ys = points[:, 0], points[:, 1]
     margin = 0.05 * max(np.ptp(xs), np.ptp(ys))
     ax.set_xlim(xs.min() - margin, xs.max() + margin)
     ax.set_ylim(ys.min() - margin, ys.max() + margin)
@@ -65,6 +73,22 @@ def main(data_path, out_path):
     ax.legend(loc="upper right", fontsize=7)
 
     ax = axes[1]
+    if data.get("variants"):
+        # A grid: the mean error per step of every variant, the bound dotted.
+        for v, variant in enumerate(data["variants"]):
+            color = plt.cm.tab20(v % 20)
+            ax.plot(variant["error_by_step"], color=color, lw=0.9, label=variant["name"])
+            if any(variant["peb_by_step"]):
+                ax.plot(variant["peb_by_step"], color=color, lw=0.6, ls=":")
+        ax.set_yscale("log")
+        ax.set_xlabel("step")
+        ax.set_ylabel("mean position error (m); bound dotted")
+        ax.set_title("error per step, every variant")
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(loc="upper left", fontsize=5, ncol=2)
+        draw_cdf(axes[2], data)
+        finish(fig, data, out_path)
+        return
     draw_room(ax, data)
     vas = np.array([v[:3] for v in data["vas"]]) if data["vas"] else np.zeros((0, 3))
     markers = {1: ("o", 12), 2: (".", 3), 3: (".", 1)}
@@ -92,7 +116,11 @@ def main(data_path, out_path):
     ax.set_title("floor plan, true VAs and the SLAM map (central run)" if has_map else "floor plan and virtual anchors")
     ax.legend(loc="upper right", fontsize=7)
 
-    ax = axes[2]
+    draw_cdf(axes[2], data)
+    finish(fig, data, out_path)
+
+
+def draw_cdf(ax, data):
     for t, traj in enumerate(data["trajectories"]):
         e = np.sort(np.array(traj["errors"]))
         if len(e):
@@ -104,6 +132,9 @@ def main(data_path, out_path):
     ax.set_title("error CDF")
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(loc="lower right", fontsize=8)
+
+
+def finish(fig, data, out_path):
     fig.text(0.01, 0.005, data["table"], family="monospace", fontsize=6.5, va="bottom")
     fig.tight_layout(rect=(0, 0.17, 1, 1))
     fig.savefig(out_path, dpi=120)

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // The mirage command-line tool.
 //   mirage run SCENARIO.yaml [--runs N] [--seed S] [--threads T] [--json FILE] [--csv DIR] [--plot FILE]
-//     (a `method: coop` scenario runs its grid of cooperative variants instead)
+//   mirage describe [METHOD] [--markdown]
 //   mirage simulate SCENARIO.yaml --out DIR [--seed S] [--trajectory NAME] [--run R]
 //   mirage --version
 // Exit codes: 0 success, 2 bad input or usage, 3 internal error.
@@ -22,20 +22,18 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
-#include "mirage/io/coop_report.h"
-#include "mirage/io/coop_scenario.h"
 #include "mirage/io/input_error.h"
+#include "mirage/io/options_describe.h"
 #include "mirage/io/output_file.h"
 #include "mirage/io/plot.h"
 #include "mirage/io/recorded_data.h"
 #include "mirage/io/recorded_scenario.h"
 #include "mirage/io/report.h"
 #include "mirage/io/scenario.h"
-#include "mirage/pipeline/coop_experiment.h"
-#include "mirage/pipeline/coop_summary.h"
-#include "mirage/pipeline/mint_experiment.h"
-#include "mirage/pipeline/mint_summary.h"
-#include "mirage/pipeline/run_simulator.h"
+#include "mirage/methods/registry.h"
+#include "mirage/pipeline/runner.h"
+#include "mirage/pipeline/simulated_recording.h"
+#include "mirage/pipeline/summary.h"
 
 namespace {
 
@@ -135,59 +133,53 @@ void PrintWritten(bool quiet, const std::vector<std::string>& files) {
   std::fprintf(stderr, "mirage: wrote %s\n", list.c_str());
 }
 
-// A cooperative grid (issue 5): every variant `runs` times on both cores, with a progress bar.
-int RunCoop(const RunArgs& args, const mirage::io::ScenarioOverrides& overrides) {
-  const auto scenario = mirage::io::LoadCoopScenario(args.scenario, overrides);
-  const auto& config = scenario.config;
+int Run(const RunArgs& args) {
+  mirage::io::ScenarioOverrides overrides;
+  overrides.runs = args.runs;
+  overrides.seed = ParseSeed(args.seed);
+  overrides.threads = args.threads;
+  const auto scenario = mirage::io::LoadScenario(args.scenario, overrides);
   CheckOutputs(args.json, args.csv, args.plot);
-  Progress progress(args.quiet, "runs");
-  const auto result = mirage::pipeline::RunCoopExperiment(config, std::ref(progress));
-  const auto summary = mirage::pipeline::SummarizeCoop(result);
-  if (!args.quiet) std::cout << mirage::io::FormatCoopTable(config, summary) << std::flush;
+
+  Progress progress(args.quiet, "jobs");
+  const auto result = mirage::pipeline::RunExperiment(scenario.variants, std::ref(progress));
+  const auto summaries = mirage::pipeline::Summarize(scenario.variants, result);
+  const std::string table = mirage::io::FormatResultTable(scenario, result, summaries);
+
+  if (!args.quiet) std::cout << table << std::flush;
   std::vector<std::string> written;
   if (!args.json.empty()) {
-    mirage::io::WriteJson(args.json, mirage::io::MakeCoopJson(args.scenario, config, result, summary));
+    mirage::io::WriteJson(args.json, mirage::io::MakeJsonReport(scenario, result, summaries));
     written.push_back(args.json);
   }
   if (!args.csv.empty()) {
-    for (const auto& f : mirage::io::WriteCoopCsv(args.csv, config, result, summary)) written.push_back(f);
+    for (const auto& f : mirage::io::WriteCsv(args.csv, scenario, result, summaries)) written.push_back(f);
   }
   if (!args.plot.empty()) {
-    mirage::io::RenderPlot(args.plot, PlotScript("MIRAGE_COOP_PLOT_SCRIPT", "plot_coop.py"),
-                           mirage::io::CoopPlotData(config, result, summary));
+    mirage::io::RenderPlot(args.plot, PlotScript("MIRAGE_PLOT_SCRIPT", "plot_run.py"),
+                           mirage::io::PlotData(scenario, result, summaries, table));
     written.push_back(args.plot);
   }
   PrintWritten(args.quiet, written);
   return 0;
 }
 
-int Run(const RunArgs& args) {
-  mirage::io::ScenarioOverrides overrides;
-  overrides.runs = args.runs;
-  overrides.seed = ParseSeed(args.seed);
-  overrides.threads = args.threads;
-  if (mirage::io::IsCoopScenario(args.scenario)) return RunCoop(args, overrides);
-  const auto scenario = mirage::io::LoadScenario(args.scenario, overrides);
-  CheckOutputs(args.json, args.csv, args.plot);
-
-  Progress progress(args.quiet, "runs");
-  const auto result = mirage::pipeline::RunMintExperiment(scenario.mint, std::ref(progress));
-  const auto summary = mirage::pipeline::Summarize(scenario.mint, result);
-
-  if (!args.quiet) std::cout << mirage::io::FormatResultTable(scenario, summary) << std::flush;
-  std::vector<std::string> written;
-  if (!args.json.empty()) {
-    mirage::io::WriteJson(args.json, mirage::io::MakeJsonReport(scenario, result, summary));
-    written.push_back(args.json);
+// Every option of a method (or the list of methods): key, unit, default or the formula it is
+// derived from, valid range and meaning, from the method's options descriptor.
+int Describe(const std::string& method, bool markdown) {
+  if (method.empty()) {
+    std::cout << "methods (mirage describe METHOD lists its options):\n";
+    for (const auto& m : mirage::methods::Methods()) {
+      std::cout << fmt::format("  {:<10} {} ({})\n", m.name, m.summary, m.source);
+    }
+    return 0;
   }
-  if (!args.csv.empty()) {
-    for (const auto& f : mirage::io::WriteCsv(args.csv, scenario, result)) written.push_back(f);
+  const auto* info = mirage::methods::FindMethod(method);
+  if (info == nullptr) {
+    throw mirage::io::InputError("describe: unknown method '" + method + "' (available: " + mirage::methods::MethodNames() + ")");
   }
-  if (!args.plot.empty()) {
-    mirage::io::WritePlot(args.plot, PlotScript("MIRAGE_PLOT_SCRIPT", "plot_run.py"), scenario, result, summary);
-    written.push_back(args.plot);
-  }
-  PrintWritten(args.quiet, written);
+  std::cout << (markdown ? mirage::io::DescribeMarkdown(*info->descriptor, "method")
+                         : mirage::io::DescribeText(*info->descriptor, "method: {name: " + info->name + ", ...}"));
   return 0;
 }
 
@@ -197,13 +189,17 @@ int Run(const RunArgs& args) {
 int Simulate(const SimulateArgs& args) {
   mirage::io::ScenarioOverrides overrides;
   overrides.seed = ParseSeed(args.seed);
-  if (mirage::io::IsCoopScenario(args.scenario)) {
-    throw mirage::io::InputError(args.scenario + ": method coop has no recorded-data form; use mirage run");
-  }
   const auto scenario = mirage::io::LoadScenario(args.scenario, overrides);
-  const auto& config = scenario.mint;
+  if (scenario.has_grid()) {
+    throw mirage::io::InputError(args.scenario + ": the scenario has a grid of variants; simulate one variant's scenario");
+  }
+  const auto& config = scenario.variants.front().experiment;
   if (config.measurement_model == mirage::pipeline::MeasurementModel::kRecorded) {
     throw mirage::io::InputError(args.scenario + ": measurements.model is recorded; there is nothing to simulate");
+  }
+  if (config.method.input != mirage::methods::MethodInput::kRangeSets) {
+    throw mirage::io::InputError(args.scenario + ": method " + config.method.name +
+                                 " consumes CIRs, which have no recorded-data form; use mirage run");
   }
   int trajectory = 0;
   if (!args.trajectory.empty()) {
@@ -225,7 +221,7 @@ int Simulate(const SimulateArgs& args) {
   mirage::io::CheckWritableDirectory(args.out, "--out");
   const auto recording = mirage::pipeline::SimulateRecording(config, trajectory, args.run);
   mirage::io::WriteRecording(args.out, recording);
-  mirage::io::WriteRecordedScenario(args.scenario, args.out, config.name + " (recorded)");
+  mirage::io::WriteRecordedScenario(scenario, trajectory, args.out, config.name + " (recorded)");
   if (!args.quiet) {
     std::size_t rows = 0;
     for (const auto& step : recording.steps) {
@@ -265,6 +261,12 @@ int main(int argc, char** argv) {
   simulate->add_option("--run", sim.run, "Monte-Carlo run index (start offset and random streams), default 0");
   simulate->add_flag("--quiet", sim.quiet, "print nothing but errors");
 
+  std::string describe_method;
+  bool describe_markdown = false;
+  auto* describe = app.add_subcommand("describe", "list the methods, or every option of one (unit, default, range)");
+  describe->add_option("method", describe_method, "method name");
+  describe->add_flag("--markdown", describe_markdown, "print a Markdown table (the form of docs/scenario.md)");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -280,6 +282,7 @@ int main(int argc, char** argv) {
   try {
     if (run->parsed()) return Run(args);
     if (simulate->parsed()) return Simulate(sim);
+    if (describe->parsed()) return Describe(describe_method, describe_markdown);
   } catch (const mirage::io::InputError& e) {
     std::cerr << "mirage: error: " << e.what() << "\n";
     return 2;

@@ -12,11 +12,11 @@ namespace {
 
 void RunSteps(benchmark::State& state, const methods::mint::MintOptions& mint, const dsp::MpcExtractorOptions& mpc) {
   const auto& d = SeminarRoom();
-  const auto& config = d.scenario.mint;
+  const auto& config = d.scenario.variants.front().experiment;
   const dsp::MpcExtractor extractor(mpc, d.synthesizer->pulse(), d.synthesizer->sample_count(),
                                     config.channel.sample_period_s, config.channel.medium);
   const double sigma1 = d.synthesizer->pulse().range_sigma_at_unit_sinr_m(d.synthesizer->options().medium.speed_mps);
-  const int anchors = static_cast<int>(config.anchors_m.size());
+  const int anchors = static_cast<int>(config.anchors.size());
   methods::mint::MintTracker tracker(mint, d.vas, config.plan, sigma1);
   std::size_t step = 0;
   tracker.Initialize(d.samples.front().t_s, d.samples.front().position_m);
@@ -44,19 +44,23 @@ void RunSteps(benchmark::State& state, const methods::mint::MintOptions& mint, c
       benchmark::Counter(static_cast<double>(state.iterations() * anchors), benchmark::Counter::kIsRate);
 }
 
+// The scenario's MINT options (its method section).
+const methods::mint::MintOptions& ScenarioMint() {
+  return *static_cast<const methods::mint::MintOptions*>(SeminarRoom().scenario.variants.front().experiment.method.options.get());
+}
+
 void BM_MintAnchorStep(benchmark::State& state) {
-  const auto& config = SeminarRoom().scenario.mint;
-  RunSteps(state, config.mint, config.mpc);
+  RunSteps(state, ScenarioMint(), SeminarRoom().scenario.variants.front().experiment.mpc);
 }
 BENCHMARK(BM_MintAnchorStep)->Unit(benchmark::kMicrosecond);
 
 void BM_MintAnchorStepNoSafeguards(benchmark::State& state) {
-  auto mint = SeminarRoom().scenario.mint.mint;
+  auto mint = ScenarioMint();
   mint.reassociate = false;
   mint.innovation_gate_chi2 = 0.0;
   mint.relocalization.enabled = false;
   mint.constrain_to_room = false;
-  RunSteps(state, mint, SeminarRoom().scenario.mint.mpc);
+  RunSteps(state, mint, SeminarRoom().scenario.variants.front().experiment.mpc);
 }
 BENCHMARK(BM_MintAnchorStepNoSafeguards)->Unit(benchmark::kMicrosecond);
 

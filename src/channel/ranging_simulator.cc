@@ -23,6 +23,9 @@ const core::OptionsDescriptor<RangingOptions>& RangingOptionsDescriptor() {
                                .unit = "m",
                                .range = ValueRange::Above(0.0),
                                .doc = "Clutter ranges are uniform on [0, max_range_m]."});
+    d.Boolean(&O::multipath, {.key = "multipath",
+                              .doc = "Every visible specular path up to channel.max_order gives a range, not only the "
+                                     "line of sight (a range-level multipath benchmark)."});
     return d;
   }();
   return descriptor;
@@ -32,12 +35,15 @@ std::vector<std::string> Validate(const RangingOptions& options) {
   return RangingOptionsDescriptor().Validate(options);
 }
 
-std::vector<core::RangeMeasurement> SimulateRanging(const RangingOptions& options, double true_range_m, core::Rng& rng) {
+std::vector<core::RangeMeasurement> SimulateRanging(const RangingOptions& options, std::span<const double> true_ranges_m,
+                                                    core::Rng& rng) {
   std::vector<core::RangeMeasurement> out;
-  // Draw noise and detection every time, so that the stream does not depend on the outcome.
-  const bool detected = rng.Bernoulli(options.detection_probability);
-  const double noise_m = rng.Normal(0.0, options.range_sigma_m);
-  if (detected) out.push_back({true_range_m + noise_m, std::nullopt});
+  for (const double range_m : true_ranges_m) {
+    // Draw noise and detection every time, so that the stream does not depend on the outcome.
+    const bool detected = rng.Bernoulli(options.detection_probability);
+    const double noise_m = rng.Normal(0.0, options.range_sigma_m);
+    if (detected) out.push_back({range_m + noise_m, std::nullopt});
+  }
   const int clutter = rng.Poisson(options.clutter_rate);
   for (int i = 0; i < clutter; ++i) out.push_back({rng.Uniform(0.0, options.max_range_m), std::nullopt});
   return out;

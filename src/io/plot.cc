@@ -7,6 +7,7 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <map>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -39,89 +40,90 @@ int Run(const std::vector<std::string>& args) {
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
-json PlotData(const Scenario& scenario, const pipeline::MintExperimentResult& result,
-              const pipeline::MintSummary& summary) {
-  const auto& config = scenario.mint;
+}  // namespace
+
+json PlotData(const Scenario& scenario, const pipeline::ExperimentResult& result,
+              const std::vector<pipeline::VariantSummary>& summaries, const std::string& table) {
+  const pipeline::Experiment& e = scenario.variants.front().experiment;
   json walls = json::array();
-  for (const auto& w : config.plan.walls()) {
+  for (const auto& w : e.plan.walls()) {
     walls.push_back({w.start_m.x(), w.start_m.y(), w.end_m.x(), w.end_m.y(), w.reflection_coeff, w.label});
   }
   json obstacles = json::array();
-  for (const auto& o : config.plan.obstacles()) obstacles.push_back({o.center_m.x(), o.center_m.y(), o.radius_m});
+  for (const auto& o : e.plan.obstacles()) obstacles.push_back({o.center_m.x(), o.center_m.y(), o.radius_m});
   json anchors = json::array();
-  for (std::size_t a = 0; a < config.anchors_m.size(); ++a) {
-    anchors.push_back({config.anchors_m[a].x(), config.anchors_m[a].y(), config.anchor_ids[a]});
-  }
+  for (const auto& a : e.anchors) anchors.push_back({a.position_m.x(), a.position_m.y(), a.id});
   json vas = json::array();
-  // SLAM: the true VAs of the simulated room (what the map should find); MINT: the known ones.
-  const bool slam = config.method == pipeline::Method::kSlam;
-  for (const auto& va : (slam ? result.channel_vas : result.known_vas).all()) {
-    if (va.order > 0) vas.push_back({va.position_m.x(), va.position_m.y(), va.order, va.anchor_index});
+  for (const auto& va : result.variants.front().channel_vas.all()) {
+    if (va.order > 0 && va.order <= 2) vas.push_back({va.position_m.x(), va.position_m.y(), va.order, va.anchor_index});
   }
-  json trajectories = json::array();
-  for (std::size_t t = 0; t < config.trajectories.size(); ++t) {
-    json runs = json::array();
-    json errors = json::array();
-    json truth = json::array();
-    json ellipses = json::array();
-    json map = json::array();
-    // The truth and ellipses of the run closest to the grid centre among the runs present.
-    int central = -1;
-    double central_offset_m = 0.0;
-    for (const auto& run : result.runs) {
-      if (run.trajectory != static_cast<int>(t)) continue;
-      if (central < 0 || run.offset_m.norm() < central_offset_m) {
-        central = run.run;
-        central_offset_m = run.offset_m.norm();
-      }
+  // Per tracked agent of the first variant: every run's estimate, the truth, errors and ellipses of
+  // the run closest to the run grid's centre, and that run's map.
+  std::map<std::string, json> by_agent;
+  std::vector<std::string> order;
+  std::map<std::string, std::pair<int, double>> central;  // agent -> (run, offset)
+  for (const auto& run : result.runs) {
+    if (run.variant != 0) continue;
+    for (const auto& agent : run.agents) {
+      const auto it = central.find(agent.name);
+      if (it == central.end() || run.offset_m.norm() < it->second.second) central[agent.name] = {run.run, run.offset_m.norm()};
     }
-    for (const auto& run : result.runs) {
-      if (run.trajectory != static_cast<int>(t)) continue;
+  }
+  for (const auto& run : result.runs) {
+    if (run.variant != 0) continue;
+    for (const auto& agent : run.agents) {
+      if (!by_agent.count(agent.name)) {
+        order.push_back(agent.name);
+        by_agent[agent.name] = {{"name", agent.name}, {"truth", json::array()}, {"runs", json::array()},
+                                {"errors", json::array()}, {"ellipses", json::array()}, {"map", json::array()}};
+      }
+      json& t = by_agent[agent.name];
+      const bool is_central = central[agent.name].first == run.run;
       json est = json::array();
-      for (std::size_t k = 0; k < run.steps.size(); ++k) {
-        const auto& s = run.steps[k];
+      for (std::size_t k = 0; k < agent.steps.size(); ++k) {
+        const auto& s = agent.steps[k];
         est.push_back({s.estimate_m.x(), s.estimate_m.y()});
-        if (s.error_m) errors.push_back(*s.error_m);
-        if (run.run == central) {
-          if (s.truth_m) truth.push_back({s.truth_m->x(), s.truth_m->y()});
+        if (s.error_m) t["errors"].push_back(*s.error_m);
+        if (is_central) {
+          if (s.truth_m) t["truth"].push_back({s.truth_m->x(), s.truth_m->y()});
           if (k % 20 == 0) {
-            ellipses.push_back({s.estimate_m.x(), s.estimate_m.y(), s.covariance_m2(0, 0), s.covariance_m2(0, 1),
-                                s.covariance_m2(1, 1)});
+            t["ellipses"].push_back({s.estimate_m.x(), s.estimate_m.y(), s.covariance_m2(0, 0), s.covariance_m2(0, 1),
+                                     s.covariance_m2(1, 1)});
           }
         }
       }
-      runs.push_back({{"run", run.run}, {"diverged", run.diverged}, {"estimate", est}});
-      if (run.run == central && config.method == pipeline::Method::kSlam) {
-        // The SLAM map of the central run: estimated VAs with covariances (anchors excluded).
-        for (const auto& va : run.map) {
-          if (va.origin == methods::slam::MapVaOrigin::kAnchor) continue;
-          map.push_back({{"x", va.position_m.x()},
-                         {"y", va.position_m.y()},
-                         {"cov", {va.covariance_m2(0, 0), va.covariance_m2(0, 1), va.covariance_m2(1, 1)}},
-                         {"anchor", va.anchor_index},
-                         {"discovered", va.origin == methods::slam::MapVaOrigin::kDiscovered},
-                         {"filtered", va.filtered}});
+      t["runs"].push_back({{"run", run.run}, {"diverged", agent.diverged}, {"estimate", est}});
+      if (is_central) {
+        for (const auto& f : run.map) {
+          if (f.origin == "anchor") continue;
+          t["map"].push_back({{"x", f.position_m.x()},
+                              {"y", f.position_m.y()},
+                              {"cov", {f.covariance_m2(0, 0), f.covariance_m2(0, 1), f.covariance_m2(1, 1)}},
+                              {"anchor", f.anchor_index},
+                              {"discovered", f.origin == "discovered"},
+                              {"filtered", !f.scored}});
         }
       }
     }
-    trajectories.push_back({{"name", config.trajectories[t].name},
-                            {"truth", truth},
-                            {"central_run", central},
-                            {"runs", runs},
-                            {"errors", errors},
-                            {"ellipses", ellipses},
-                            {"map", map}});
   }
-  return {{"title", config.name},
+  json trajectories = json::array();
+  for (const auto& name : order) trajectories.push_back(by_agent[name]);
+  json variants = json::array();
+  if (scenario.has_grid()) {
+    for (const auto& s : summaries) {
+      variants.push_back({{"name", s.name}, {"error_by_step", s.overall.error_by_step_m}, {"peb_by_step", s.overall.bound_by_step_m}});
+    }
+  }
+  return {{"title", e.name},
           {"walls", walls},
           {"obstacles", obstacles},
           {"anchors", anchors},
           {"vas", vas},
           {"trajectories", trajectories},
-          {"table", FormatResultTable(scenario, summary)}};
+          {"variants", variants},
+          {"table", table}};
 }
 
-}  // namespace
 
 void RenderPlot(const std::string& png_path, const std::string& script_path, const nlohmann::json& data) {
   const std::string data_path = png_path + ".json";
@@ -143,9 +145,5 @@ void RenderPlot(const std::string& png_path, const std::string& script_path, con
   if (ec) throw InputError(png_path + ": cannot replace the file (" + ec.message() + ")");
 }
 
-void WritePlot(const std::string& png_path, const std::string& script_path, const Scenario& scenario,
-               const pipeline::MintExperimentResult& result, const pipeline::MintSummary& summary) {
-  RenderPlot(png_path, script_path, PlotData(scenario, result, summary));
-}
 
 }  // namespace mirage::io

@@ -37,7 +37,7 @@ void ParseAnchorsCsv(std::string_view text, const std::string& file, pipeline::R
   CsvReader csv(text, file, {{"anchor_id"}, {"x_m"}, {"y_m"}, {"z_m", false}});
   recording.anchor_ids.clear();
   recording.anchors_m.clear();
-  recording.anchor_heights_m.clear();
+  recording.anchors_have_z = csv.Has("z_m");
   while (csv.Next()) {
     const std::string id(csv.Field("anchor_id"));
     if (id.empty()) csv.Fail("anchor_id", "missing value (expected an anchor id)");
@@ -45,8 +45,7 @@ void ParseAnchorsCsv(std::string_view text, const std::string& file, pipeline::R
       if (known == id) csv.Fail("anchor_id", "duplicate anchor id");
     }
     recording.anchor_ids.push_back(id);
-    recording.anchors_m.emplace_back(csv.Number("x_m"), csv.Number("y_m"));
-    recording.anchor_heights_m.push_back(csv.Has("z_m") ? std::optional<double>(csv.Number("z_m")) : std::nullopt);
+    recording.anchors_m.emplace_back(csv.Number("x_m"), csv.Number("y_m"), csv.Has("z_m") ? csv.Number("z_m") : 0.0);
   }
   if (recording.anchor_ids.empty()) throw InputError(file + ": no anchors (expected at least one row after the header)");
 }
@@ -88,14 +87,14 @@ void ParseRangesCsv(std::string_view text, const std::string& file, pipeline::Re
 void ParseTruthCsv(std::string_view text, const std::string& file, pipeline::Recording& recording) {
   CsvReader csv(text, file, {{"t_s"}, {"x_m"}, {"y_m"}, {"z_m", false}});
   recording.truth.clear();
+  recording.truth_has_z = csv.Has("z_m");
   while (csv.Next()) {
     const double t_s = csv.Number("t_s");
     if (!recording.truth.empty() && !(t_s > recording.truth.back().t_s)) {
       csv.Fail("t_s", fmt::format("time must increase from row to row (the previous row has t_s = {})",
                                   recording.truth.back().t_s));
     }
-    recording.truth.push_back({t_s, Vec2(csv.Number("x_m"), csv.Number("y_m"))});
-    if (csv.Has("z_m")) (void)csv.Number("z_m");  // checked, not used by the 2-D methods
+    recording.truth.push_back({t_s, Vec3(csv.Number("x_m"), csv.Number("y_m"), csv.Has("z_m") ? csv.Number("z_m") : 0.0)});
   }
   if (recording.truth.empty()) throw InputError(file + ": no truth rows (expected at least one row after the header)");
 }
@@ -126,11 +125,11 @@ void WriteRecording(const std::string& dir, const pipeline::Recording& recording
     const std::string path = dir + "/anchors.csv";
     OutputFile out_file(path);
     auto& out = out_file.stream();
-    const bool with_z = !recording.anchor_heights_m.empty() && recording.anchor_heights_m.front().has_value();
+    const bool with_z = recording.anchors_have_z;
     out << (with_z ? "anchor_id,x_m,y_m,z_m\n" : "anchor_id,x_m,y_m\n");
     for (std::size_t a = 0; a < recording.anchor_ids.size(); ++a) {
       out << fmt::format("{},{},{}", recording.anchor_ids[a], recording.anchors_m[a].x(), recording.anchors_m[a].y());
-      if (with_z) out << fmt::format(",{}", recording.anchor_heights_m[a].value_or(0.0));
+      if (with_z) out << fmt::format(",{}", recording.anchors_m[a].z());
       out << "\n";
     }
     out_file.Commit();
@@ -155,8 +154,12 @@ void WriteRecording(const std::string& dir, const pipeline::Recording& recording
     const std::string path = dir + "/truth.csv";
     OutputFile out_file(path);
     auto& out = out_file.stream();
-    out << "t_s,x_m,y_m\n";
-    for (const auto& s : recording.truth) out << fmt::format("{},{},{}\n", s.t_s, s.position_m.x(), s.position_m.y());
+    out << (recording.truth_has_z ? "t_s,x_m,y_m,z_m\n" : "t_s,x_m,y_m\n");
+    for (const auto& s : recording.truth) {
+      out << fmt::format("{},{},{}", s.t_s, s.position_m.x(), s.position_m.y());
+      if (recording.truth_has_z) out << fmt::format(",{}", s.position_m.z());
+      out << "\n";
+    }
     out_file.Commit();
   }
 }

@@ -8,17 +8,18 @@
 
 namespace mirage::io {
 
-void WriteRecordedScenario(const std::string& scenario_path, const std::string& dir, const std::string& name) {
-  YamlOrigins origins(scenario_path);
-  YAML::Node doc = LoadYamlWithExtends(scenario_path, origins);
+void WriteRecordedScenario(const Scenario& scenario, int trajectory, const std::string& dir, const std::string& name) {
+  const YAML::Node& doc = scenario.document;
+  const pipeline::Experiment& e = scenario.variants.front().experiment;
   YAML::Node out(YAML::NodeType::Map);
   out["name"] = name;
   for (const auto& entry : doc) {
     const std::string key = entry.first.Scalar();
-    // Recorded data bring their own anchors and trajectory and are a single run; the
-    // range-level simulator's options describe how the recording was made, not how to read it.
+    // Recorded data bring their own anchors and trajectory and are a single run; the simulators'
+    // options describe how the recording was made, not how to read it.
     if (key == "name" || key == "anchors" || key == "trajectories" || key == "run_grid" || key == "runs" ||
-        key == "perturb_initial_position" || key == "measurements" || key == "extends") {
+        key == "perturb_initial_position" || key == "measurements" || key == "extends" || key == "grid" ||
+        key == "agents" || key == "steps") {
       continue;
     }
     out[key] = entry.second;
@@ -28,15 +29,17 @@ void WriteRecordedScenario(const std::string& scenario_path, const std::string& 
   measurements["anchors"] = "anchors.csv";
   measurements["ranges"] = "ranges.csv";
   measurements["truth"] = "truth.csv";
+  if (e.measurement_model == pipeline::MeasurementModel::kRanging) measurements["range_sigma_m"] = e.ranging.range_sigma_m;
+  measurements["speed_mps"] = e.trajectories[static_cast<std::size_t>(trajectory)].speed_mps;
   out["measurements"] = measurements;
 
   YAML::Emitter emitter;
+  emitter.SetDoublePrecision(17);
   emitter << out;
   const std::string path = dir + "/scenario.yaml";
   OutputFile output(path);
-  auto& file = output.stream();
-  file << "# Written by `mirage simulate " << scenario_path << "`: runs the recording in this directory.\n"
-       << emitter.c_str() << "\n";
+  output.stream() << "# Written by `mirage simulate " << scenario.file << "`: runs the recording in this directory.\n"
+                  << emitter.c_str() << "\n";
   output.Commit();
 }
 

@@ -9,13 +9,24 @@
 
 #include <fmt/format.h>
 
+#include "mirage/channel/cir_synthesizer.h"
+#include "mirage/channel/range_level_simulator.h"
+#include "mirage/channel/ranging_simulator.h"
+#include "mirage/dsp/mpc_extractor.h"
+#include "mirage/eval/error_stats.h"
 #include "mirage/geometry/segment.h"
 #include "mirage/geometry/trajectory.h"
+#include "mirage/io/options_json.h"
+#include "mirage/io/options_yaml.h"
+#include "mirage/io/scenario_grid.h"
 #include "mirage/io/scenario_sections.h"
 #include "mirage/io/yaml_reader.h"
 
 namespace mirage::io {
 namespace {
+
+using pipeline::Experiment;
+using pipeline::MeasurementModel;
 
 // Work limit that keeps a valid-looking file from exhausting the machine (the others are in
 // scenario_sections.h).
@@ -28,24 +39,56 @@ std::vector<Vec2> GridCorners(const pipeline::RunGrid& grid) {
   return {Vec2::Zero(), Vec2(-hx, -hy), Vec2(hx, -hy), Vec2(-hx, hy), Vec2(hx, hy)};
 }
 
+// A file in the layout before the one schema: say how to write it now.
+void RejectOldLayout(YamlMap& root, const YAML::Node& doc) {
+  const auto how = [](const std::string& name) {
+    return fmt::format("the scenario layout changed: write `method: {{name: {0}, ...}}` with the keys of the former "
+                       "top-level `{0}:` section inside it (docs/scenario.md)",
+                       name);
+  };
+  if (doc["method"] && doc["method"].IsScalar()) root.Fail("method", how(doc["method"].Scalar()));
+  for (const char* old : {"mint", "slam", "coop"}) {
+    if (doc[old]) root.Fail(old, how(old));
+  }
+  if (doc["variants"] || doc["variant_defaults"]) {
+    root.Fail(doc["variants"] ? "variants" : "variant_defaults",
+              "the scenario layout changed: the base values are the scenario's own keys, and `grid:` lists the "
+              "variants as key paths with lists of values, e.g. `grid: [{method.wall_update: [false, true]}]` "
+              "(docs/scenario.md)");
+  }
+  if (doc["agents"] && doc["agents"].IsSequence()) {
+    root.Fail("agents", "the scenario layout changed: agents are `trajectories:` (name, waypoints_m, speed_mps, "
+                        "dt_s); `agents: N` walks the first N of them together (docs/scenario.md)");
+  }
+  if (doc["anchor"]) root.Fail("anchor", "the scenario layout changed: list it under `anchors:` (docs/scenario.md)");
+  if (doc["wall_bias"]) {
+    root.Fail("wall_bias", "the scenario layout changed: write `floor_plan_error: {biased_wall: LABEL, bias_m: 0.1}` "
+                           "(docs/scenario.md)");
+  }
+  if (doc["antenna_spacing_m"]) {
+    root.Fail("antenna_spacing_m", "the scenario layout changed: it is the method option `method.antenna_spacing_m`");
+  }
+}
+
 // The CIR window must contain every LOS delay the trajectories produce, with room after it.
-void CheckWindowCoversLos(YamlMap& m, const pipeline::MintExperimentConfig& config) {
+void CheckWindowCoversLos(YamlMap& m, const Experiment& e) {
   double min_m = std::numeric_limits<double>::infinity(), max_m = 0.0;
-  for (const auto& spec : config.trajectories) {
-    for (const Vec2& offset : GridCorners(config.run_grid)) {
+  for (const auto& spec : e.trajectories) {
+    for (const Vec2& offset : GridCorners(e.run_grid)) {
       for (std::size_t i = 0; i < spec.waypoints_m.size(); ++i) {
-        for (const Vec2& anchor : config.anchors_m) {
+        for (const auto& anchor : e.anchors) {
           // The distance to a point is convex along a segment: its maximum is at a waypoint.
-          max_m = std::max(max_m, (spec.waypoints_m[i] + offset - anchor).norm());
+          const Vec2 a = anchor.position_m.head<2>();
+          max_m = std::max(max_m, (spec.waypoints_m[i] + offset - a).norm());
           if (i > 0) {
-            min_m = std::min(min_m, geometry::DistanceToSegment(anchor, spec.waypoints_m[i - 1] + offset,
-                                                                spec.waypoints_m[i] + offset));
+            min_m = std::min(min_m, geometry::DistanceToSegment(a, spec.waypoints_m[i - 1] + offset, spec.waypoints_m[i] + offset));
           }
         }
       }
     }
   }
-  const auto& o = config.channel;
+  if (!std::isfinite(min_m)) return;
+  const auto& o = e.channel;
   if (o.window_start_s > min_m / o.medium.speed_mps) {
     m.Fail("window_start_s", fmt::format("{} s starts after the earliest LOS delay along the trajectories ({:.6g} s)",
                                          FormatValue(o.window_start_s), min_m / o.medium.speed_mps));
@@ -58,287 +101,29 @@ void CheckWindowCoversLos(YamlMap& m, const pipeline::MintExperimentConfig& conf
   }
 }
 
-void ReadChannel(YamlMap m, pipeline::MintExperimentConfig& config) {
-  channel::ChannelOptions& o = config.channel;
-  config.channel_max_order = m.Integer("max_order", config.channel_max_order, 0, geometry::kMaxVirtualAnchorOrder);
-  CheckVirtualAnchorCount(m, "max_order", config.plan.walls().size(), config.channel_max_order);
-  o.sample_period_s = m.NumberInRange("sample_period_s", o.sample_period_s, 1e-15, 1e-3, "s");
-  o.window_start_s = m.NumberInRange("window_start_s", o.window_start_s, 0.0, 1.0, "s");
-  o.window_length_s = m.NumberInRange("window_length_s", o.window_length_s, 1e-12, 1.0, "s");
-  o.snr_at_1m_db = m.NumberInRange("snr_at_1m_db", o.snr_at_1m_db, -100.0, 200.0, "dB");
-  o.pulse = ReadPulse(m.OptionalMap("pulse"));
-  o.diffuse = ReadDiffuse(m.OptionalMap("diffuse"));
-  m.RejectUnknownKeys();
-  Check(o, m);
-  CheckWindowCoversLos(m, config);
-}
-
-// The keys MINT and SLAM share, with the same meaning and limits.
-template <typename TrackerOptions>
-void ReadTrackerCommon(YamlMap& m, TrackerOptions& o) {
-  o.cutoff_m = m.NumberInRange("cutoff_m", o.cutoff_m, 1e-9, kHuge, "m");
-  o.range_sigma_m = m.NumberInRange("range_sigma_m", o.range_sigma_m, 1e-9, kHuge, "m");
-  o.initial_position_sigma_m =
-      m.NumberInRange("initial_position_sigma_m", o.initial_position_sigma_m, 1e-9, kHuge, "m");
-  o.initial_velocity_sigma_mps =
-      m.NumberInRange("initial_velocity_sigma_mps", o.initial_velocity_sigma_mps, 1e-9, kHuge, "m/s");
-}
-
-methods::mint::MintOptions ReadMint(YamlMap m, std::size_t walls) {
-  methods::mint::MintOptions o;
-  ReadTrackerCommon(m, o);
-  o.max_order = m.Integer("max_order", o.max_order, 0, geometry::kMaxVirtualAnchorOrder);
-  CheckVirtualAnchorCount(m, "max_order", walls, o.max_order);
-  o.reassociate = m.Boolean("reassociate", o.reassociate);
-  o.constrain_to_room = m.Boolean("constrain_to_room", o.constrain_to_room);
-  o.innovation_gate_chi2 = m.NumberInRange("innovation_gate_chi2", o.innovation_gate_chi2, 0.0, 1e6, "");
-  o.motion = ReadMotion(m.OptionalMap("motion"), o.motion);
-  o.variance = ReadVariance(m.OptionalMap("variance"));
-  {
-    YamlMap r = m.OptionalMap("relocalization");
-    auto& ro = o.relocalization;
-    ro.enabled = r.Boolean("enabled", ro.enabled);
-    ro.match_tolerance_m = r.NumberInRange("match_tolerance_m", ro.match_tolerance_m, 1e-6, 10.0, "m");
-    ro.max_order = r.Integer("max_order", ro.max_order, 0, geometry::kMaxVirtualAnchorOrder);
-    ro.min_visible = r.Integer("min_visible", ro.min_visible, 1, 10000);
-    ro.lost_score = r.NumberInRange("lost_score", ro.lost_score, 0.0, 1.0, "");
-    ro.lost_steps = r.Integer("lost_steps", ro.lost_steps, 1, 100000);
-    ro.search_radius_m = r.NumberInRange("search_radius_m", ro.search_radius_m, 1e-3, 100.0, "m");
-    ro.search_step_m = r.NumberInRange("search_step_m", ro.search_step_m, 1e-3, 100.0, "m");
-    ro.found_score = r.NumberInRange("found_score", ro.found_score, 0.0, 1.0, "");
-    r.RejectUnknownKeys();
+void ReadMedium(YamlMap m, Experiment& e) {
+  const std::string kind = m.String("kind", std::string("radio"));
+  if (kind != "radio") {
+    m.Fail("kind", "unknown medium '" + kind + "' (available: radio; sound comes with the acoustic methods)");
   }
+  e.medium = core::Medium::Radio();
   m.RejectUnknownKeys();
-  Check(o, m);
-  return o;
 }
 
-methods::slam::TrackRecoveryOptions ReadRecovery(YamlMap m) {
-  methods::slam::TrackRecoveryOptions o;
-  o.enabled = m.Boolean("enabled", o.enabled);
-  o.match_tolerance_m = m.NumberInRange("match_tolerance_m", o.match_tolerance_m, 1e-9, kHuge, "m");
-  o.los_candidates = m.Integer("los_candidates", o.los_candidates, 1, 100);
-  o.min_margin = m.Integer("min_margin", o.min_margin, 1, 1000);
-  o.min_margin_floor_plan = m.Integer("min_margin_floor_plan", o.min_margin_floor_plan, 1, 1000);
-  o.floor_plan_watch_steps = m.Integer("floor_plan_watch_steps", o.floor_plan_watch_steps, 0, 1000000);
-  o.lost_steps = m.Integer("lost_steps", o.lost_steps, 1, 1000000);
-  o.follow_gate_m = m.NumberInRange("follow_gate_m", o.follow_gate_m, 1e-9, kHuge, "m");
-  o.max_jump_m = m.NumberInRange("max_jump_m", o.max_jump_m, 1e-9, kHuge, "m");
-  o.max_speed_mps = m.NumberInRange("max_speed_mps", o.max_speed_mps, 1e-9, kHuge, "m/s");
-  m.RejectUnknownKeys();
-  return o;
-}
-
-methods::slam::SweepOptions ReadSweep(YamlMap m) {
-  methods::slam::SweepOptions o;
-  o.enabled = m.Boolean("enabled", o.enabled);
-  o.window_steps = m.Integer("window_steps", o.window_steps, 3, 100000);
-  o.every_steps = m.Integer("every_steps", o.every_steps, 1, 100000);
-  o.min_baseline_m = m.NumberInRange("min_baseline_m", o.min_baseline_m, 1e-9, kHuge, "m");
-  o.gate_m = m.NumberInRange("gate_m", o.gate_m, 1e-9, kHuge, "m");
-  o.min_support_fraction = m.NumberInRange("min_support_fraction", o.min_support_fraction, 1e-9, 1.0, "");
-  m.RejectUnknownKeys();
-  return o;
-}
-
-methods::slam::DiscoveryOptions ReadDiscovery(YamlMap m) {
-  methods::slam::DiscoveryOptions o;
-  o.enabled = m.Boolean("enabled", o.enabled);
-  o.max_agent_sigma_m = m.NumberInRange("max_agent_sigma_m", o.max_agent_sigma_m, 1e-9, kHuge, "m");
-  o.group_gate_m = m.NumberInRange("group_gate_m", o.group_gate_m, 1e-9, kHuge, "m");
-  o.group_max_gap_steps = m.Integer("group_max_gap_steps", o.group_max_gap_steps, 0, 100000);
-  o.group_size = m.Integer("group_size", o.group_size, 3, 100000);
-  o.min_group_baseline_m = m.NumberInRange("min_group_baseline_m", o.min_group_baseline_m, 0.0, kHuge, "m");
-  o.max_fit_rms_m = m.NumberInRange("max_fit_rms_m", o.max_fit_rms_m, 1e-9, kHuge, "m");
-  o.rls_initial_sigma_m = m.NumberInRange("rls_initial_sigma_m", o.rls_initial_sigma_m, 1e-9, kHuge, "m");
-  o.rls_range_sigma_m = m.NumberInRange("rls_range_sigma_m", o.rls_range_sigma_m, 1e-9, kHuge, "m");
-  o.min_measurements = m.Integer("min_measurements", o.min_measurements, 1, 100000);
-  o.resolve_misses = m.Integer("resolve_misses", o.resolve_misses, 1, 100000);
-  o.min_turn_m = m.NumberInRange("min_turn_m", o.min_turn_m, 0.0, kHuge, "m");
-  o.merge_hypotheses_m = m.NumberInRange("merge_hypotheses_m", o.merge_hypotheses_m, 1e-9, kHuge, "m");
-  o.candidate_timeout_steps = m.Integer("candidate_timeout_steps", o.candidate_timeout_steps, 1, 1000000);
-  o.candidate_max_age_steps = m.Integer("candidate_max_age_steps", o.candidate_max_age_steps, 1, 1000000);
-  o.duplicate_radius_m = m.NumberInRange("duplicate_radius_m", o.duplicate_radius_m, 0.0, kHuge, "m");
-  o.verify = m.Boolean("verify", o.verify);
-  o.verify_fit_rms_m = m.NumberInRange("verify_fit_rms_m", o.verify_fit_rms_m, 1e-9, kHuge, "m");
-  o.verify_min_inlier_fraction =
-      m.NumberInRange("verify_min_inlier_fraction", o.verify_min_inlier_fraction, 1e-9, 1.0, "");
-  o.verify_mirror_ratio = m.NumberInRange("verify_mirror_ratio", o.verify_mirror_ratio, 1.0, kHuge, "");
-  o.verify_max_sigma_m = m.NumberInRange("verify_max_sigma_m", o.verify_max_sigma_m, 1e-9, kHuge, "m");
-  o.verify_far_sigma_per_m = m.NumberInRange("verify_far_sigma_per_m", o.verify_far_sigma_per_m, 0.0, kHuge, "");
-  o.verify_far_fit_rms_m = m.NumberInRange("verify_far_fit_rms_m", o.verify_far_fit_rms_m, 1e-9, kHuge, "m");
-  o.sweep = ReadSweep(m.OptionalMap("sweep"));
-  m.RejectUnknownKeys();
-  Check(o, m);
-  return o;
-}
-
-methods::slam::SlamOptions ReadSlam(YamlMap m, std::size_t walls) {
-  methods::slam::SlamOptions o;
-  ReadTrackerCommon(m, o);
-  o.prior_max_order = m.Integer("prior_max_order", o.prior_max_order, 0, geometry::kMaxVirtualAnchorOrder);
-  CheckVirtualAnchorCount(m, "prior_max_order", walls, o.prior_max_order);
-  o.prior_va_sigma_m = m.NumberInRange("prior_va_sigma_m", o.prior_va_sigma_m, 1e-9, kHuge, "m");
-  o.prior_visibility = m.Boolean("prior_visibility", o.prior_visibility);
-  o.reassociate = m.Boolean("reassociate", o.reassociate);
-  o.innovation_gate_chi2 = m.NumberInRange("innovation_gate_chi2", o.innovation_gate_chi2, 0.0, 1e6, "");
-  o.no_visibility_model_gate_chi2 = m.NumberInRange("no_visibility_model_gate_chi2", o.no_visibility_model_gate_chi2, 0.0, 1e6, "");
-  o.va_filter = m.Boolean("va_filter", o.va_filter);
-  o.va_filter_sigma_m = m.NumberInRange("va_filter_sigma_m", o.va_filter_sigma_m, 1e-9, kHuge, "m");
-  o.va_filter_keeps_associating = m.Boolean("va_filter_keeps_associating", o.va_filter_keeps_associating);
-  o.va_filter_anchors = m.Boolean("va_filter_anchors", o.va_filter_anchors);
-  o.joseph_update = m.Boolean("joseph_update", o.joseph_update);
-  o.amplitude_gate_probability =
-      m.NumberInRange("amplitude_gate_probability", o.amplitude_gate_probability, 0.0, 0.5, "");
-  o.motion = ReadMotion(m.OptionalMap("motion"), o.motion);
-  o.variance = ReadVariance(m.OptionalMap("variance"));
-  o.discovery = ReadDiscovery(m.OptionalMap("discovery"));
-  o.blocked_amplitude_probability =
-      m.NumberInRange("blocked_amplitude_probability", o.blocked_amplitude_probability, 0.0, 0.5, "");
-  o.startup_amplitude_k_factor =
-      m.NumberInRange("startup_amplitude_k_factor", o.startup_amplitude_k_factor, 0.0, 1e6, "");
-  o.shadow_cone_deg = m.NumberInRange("shadow_cone_deg", o.shadow_cone_deg, 0.0, 180.0, "deg");
-  o.shadow_sigma_m = m.NumberInRange("shadow_sigma_m", o.shadow_sigma_m, 1e-9, kHuge, "m");
-  o.los_reacquire_m = m.NumberInRange("los_reacquire_m", o.los_reacquire_m, 0.0, kHuge, "m");
-  o.nis_window_updates = m.Integer("nis_window_updates", o.nis_window_updates, 0, 100000);
-  o.max_speed_mps = m.NumberInRange("max_speed_mps", o.max_speed_mps, 0.0, kHuge, "m/s");
-  o.discovered_va_walk_m_per_sqrt_s =
-      m.NumberInRange("discovered_va_walk_m_per_sqrt_s", o.discovered_va_walk_m_per_sqrt_s, 0.0, kHuge, "m/sqrt(s)");
-  o.recovery = ReadRecovery(m.OptionalMap("recovery"));
-  m.RejectUnknownKeys();
-  Check(o, m);
-  return o;
-}
-
-void ReadMeasurements(YamlMap m, Scenario& scenario) {
-  auto& config = scenario.mint;
-  const std::string model = m.String("model", std::string("cir"));
-  if (model == "cir") {
-    config.measurement_model = pipeline::MeasurementModel::kCir;
-  } else if (model == "ranges") {
-    config.measurement_model = pipeline::MeasurementModel::kRangeLevel;
-  } else if (model == "recorded") {
-    config.measurement_model = pipeline::MeasurementModel::kRecorded;
-    RecordingFiles files;
-    files.anchors = m.FilePath("anchors");
-    files.ranges = m.FilePath("ranges");
-    if (m.Has("truth")) files.truth = m.FilePath("truth");
-    if (m.Has("start_m")) config.start_m = m.Point("start_m");
-    if (!files.truth && !config.start_m) {
-      m.Fail("start_m", "missing: without a truth file the tracker needs its start position [x, y] (m)");
-    }
-    scenario.recording_files = files;
-  } else {
-    m.Fail("model", "unknown measurement model '" + model + "' (available: cir, ranges, recorded)");
-  }
-  auto& o = config.range_level;
-  o.detection_probability = m.NumberInRange("detection_probability", o.detection_probability, 0.0, 1.0, "");
-  o.clutter_rate = m.NumberInRange("clutter_rate", o.clutter_rate, 0.0, 1000.0, "");
-  o.min_sinr_db = m.NumberInRange("min_sinr_db", o.min_sinr_db, -200.0, 200.0, "dB");
-  o.resolution_m = m.NumberInRange("resolution_m", o.resolution_m, 0.0, kHuge, "m");
-  o.max_range_sigma_m = m.NumberInRange("max_range_sigma_m", o.max_range_sigma_m, 1e-9, kHuge, "m");
-  m.RejectUnknownKeys();
-  Check(o, m);
-}
-
-// Whether the document's measurements.model is "recorded" (a malformed section is reported later
-// by ReadMeasurements).
-bool IsRecorded(const YAML::Node& doc) {
-  const YAML::Node m = doc["measurements"];
-  if (!m || !m.IsMap()) return false;
-  const YAML::Node model = m["model"];
-  return model && model.IsScalar() && model.Scalar() == "recorded";
-}
-
-// Reads the recording named by the scenario; its anchors become the scenario's.
-void LoadRecordedData(Scenario& scenario) {
-  auto& config = scenario.mint;
-  const RecordingFiles& files = *scenario.recording_files;
-  auto recording = std::make_shared<pipeline::Recording>(LoadRecording(files));
-  for (std::size_t a = 0; a < recording->anchors_m.size(); ++a) {
-    const Vec2& p = recording->anchors_m[a];
-    if (!config.plan.Encloses(p) || config.plan.InsideObstacle(p)) {
-      throw InputError(fmt::format("{}: anchor '{}' at [{}, {}] m is outside the floor plan of {} (or inside an obstacle)",
-                                   files.anchors, recording->anchor_ids[a], FormatValue(p.x()), FormatValue(p.y()),
-                                   scenario.file));
-    }
-  }
-  const Vec2 start_m = config.start_m ? *config.start_m : *recording->TruthAt(recording->steps.front().t_s);
-  if (!config.plan.Encloses(start_m)) {
-    throw InputError(fmt::format("{}: the start [{}, {}] m is outside the floor plan", config.start_m ? scenario.file
-                                                                                                       : *files.truth,
-                                 FormatValue(start_m.x()), FormatValue(start_m.y())));
-  }
-  config.anchor_ids = recording->anchor_ids;
-  config.anchors_m = recording->anchors_m;
-  config.known_anchors_m = config.anchors_m;
-  pipeline::TrajectorySpec spec;
-  spec.name = "recorded";
-  config.trajectories = {spec};
-  config.runs = 1;
-  config.recording = std::move(recording);
-}
-
-}  // namespace
-
-Scenario LoadScenario(const std::string& path, const ScenarioOverrides& overrides) {
-  auto origins = std::make_shared<YamlOrigins>(path);
-  YAML::Node doc = LoadYamlWithExtends(path, *origins);
-  YamlMap root(doc, "", origins);
-
-  Scenario scenario;
-  scenario.file = path;
-  auto& config = scenario.mint;
-  config.name = root.String("name");
-  scenario.method = root.String("method");
-  if (scenario.method == "mint") {
-    config.method = pipeline::Method::kMint;
-  } else if (scenario.method == "slam") {
-    config.method = pipeline::Method::kSlam;
-  } else {
-    root.Fail("method", "unknown method '" + scenario.method + "' (available: mint, slam)");
-  }
-  // Recorded data are one run with their own anchors and trajectory (checked before the keys
-  // that would otherwise be required).
-  const bool recorded = IsRecorded(doc);
-  if (recorded) {
-    config.runs = 1;
-    for (const char* key : {"anchors", "trajectories", "run_grid", "perturb_initial_position"}) {
-      if (root.Has(key)) {
-        root.Fail(key, "not used with measurements.model recorded (the recording has the anchors and the "
-                       "trajectory); remove it");
-      }
-    }
-  }
-  config.seed = root.Unsigned("seed", config.seed);
-  config.runs = root.Integer("runs", config.runs, 1, recorded ? 1 : kMaxRuns);
-  config.threads = root.Integer("threads", config.threads, 0, kMaxThreads);
-  config.perturb_initial_position = root.Boolean("perturb_initial_position", config.perturb_initial_position);
-  {
-    YamlMap grid = root.OptionalMap("run_grid");
-    config.run_grid.nx = grid.Integer("nx", config.run_grid.nx, 1, 1000);
-    config.run_grid.ny = grid.Integer("ny", config.run_grid.ny, 1, 1000);
-    config.run_grid.spacing_m = grid.NumberInRange("spacing_m", config.run_grid.spacing_m, 0.0, 10.0, "m");
-    grid.RejectUnknownKeys();
-  }
-
-  const std::map<std::string, double> materials = ReadMaterials(root.OptionalMap("materials"));
-  config.plan = ReadFloorPlan(root.Map("floor_plan"), materials);
-  config.known_plan = config.plan;
-
+void ReadAnchors(YamlMap& root, bool recorded, Experiment& e) {
   std::set<std::string> ids;
   for (auto& a : recorded ? std::vector<YamlMap>() : root.MapList("anchors", false)) {
     const std::string id = a.String("id");
     if (!ids.insert(id).second) a.Fail("id", "duplicate anchor id '" + id + "'");
     if (!IsPlainName(id)) a.Fail("id", "must not contain commas, quotes or line breaks (it goes into CSV files)");
-    const Vec2 p = a.Point("position_m");
-    CheckInside(config.plan, p, a, "position_m", "anchor '" + id + "'");
+    const Vec3 p = a.Point3("position_m", 0.0);
+    if (!e.plan.walls().empty()) CheckInside(e.plan, p.head<2>(), a, "position_m", "anchor '" + id + "'");
     a.RejectUnknownKeys();
-    config.anchor_ids.push_back(id);
-    config.anchors_m.push_back(p);
+    e.anchors.push_back({id, p});
   }
-  config.known_anchors_m = config.anchors_m;
+}
 
+void ReadTrajectories(YamlMap& root, bool recorded, Experiment& e) {
   for (auto& t : recorded ? std::vector<YamlMap>() : root.MapList("trajectories", false)) {
     pipeline::TrajectorySpec spec;
     spec.name = t.String("name");
@@ -347,57 +132,257 @@ Scenario LoadScenario(const std::string& path, const ScenarioOverrides& override
     if (!(spec.speed_mps > 0.0)) t.Fail("speed_mps", FormatValue(spec.speed_mps) + " m/s must be > 0 m/s");
     spec.dt_s = t.Number("dt_s", spec.dt_s);
     if (!(spec.dt_s > 0.0)) t.Fail("dt_s", FormatValue(spec.dt_s) + " s must be > 0 s (time steps go forward)");
+    spec.height_m = t.NumberInRange("height_m", spec.height_m, -kHuge, kHuge, "m");
     if (!IsPlainName(spec.name)) t.Fail("name", "must not contain commas, quotes or line breaks (it goes into CSV files)");
-    for (const auto& other : config.trajectories) {
+    for (const auto& other : e.trajectories) {
       if (other.name == spec.name) t.Fail("name", "duplicate trajectory name '" + spec.name + "' (names label the CSV rows)");
     }
     const double length_m = geometry::PolylineLength(spec.waypoints_m);
-    if (length_m < spec.speed_mps * spec.dt_s) {
-      t.Fail("waypoints_m", "the trajectory is shorter than one step (speed_mps * dt_s)");
-    }
+    if (length_m < spec.speed_mps * spec.dt_s) t.Fail("waypoints_m", "the trajectory is shorter than one step (speed_mps * dt_s)");
     if (length_m / (spec.speed_mps * spec.dt_s) > kMaxStepsPerTrajectory) {
       t.Fail("speed_mps", fmt::format("speed_mps * dt_s gives more than {:g} steps for this trajectory", kMaxStepsPerTrajectory));
     }
     // Every run walks the trajectory shifted by its grid offset: check the grid's corners too.
-    for (const Vec2& offset : GridCorners(config.run_grid)) {
-      const std::string shifted =
-          offset.norm() > 0.0 ? fmt::format(" (shifted by the run grid's corner [{}, {}] m)", FormatValue(offset.x()),
-                                            FormatValue(offset.y()))
-                              : std::string();
-      for (std::size_t i = 0; i < spec.waypoints_m.size(); ++i) {
-        CheckInside(config.plan, spec.waypoints_m[i] + offset, t, "waypoints_m", fmt::format("waypoint {}{}", i, shifted));
-        if (i > 0 && !config.plan.IsLegClear(spec.waypoints_m[i - 1] + offset, spec.waypoints_m[i] + offset)) {
-          t.Fail("waypoints_m",
-                 fmt::format("the leg from waypoint {} to {}{} crosses a wall or an obstacle", i - 1, i, shifted));
+    if (!e.plan.walls().empty()) {
+      for (const Vec2& offset : GridCorners(e.run_grid)) {
+        const std::string shifted = offset.norm() > 0.0 ? fmt::format(" (shifted by the run grid's corner [{}, {}] m)",
+                                                                      FormatValue(offset.x()), FormatValue(offset.y()))
+                                                        : std::string();
+        for (std::size_t i = 0; i < spec.waypoints_m.size(); ++i) {
+          CheckInside(e.plan, spec.waypoints_m[i] + offset, t, "waypoints_m", fmt::format("waypoint {}{}", i, shifted));
+          if (i > 0 && !e.plan.IsLegClear(spec.waypoints_m[i - 1] + offset, spec.waypoints_m[i] + offset)) {
+            t.Fail("waypoints_m", fmt::format("the leg from waypoint {} to {}{} crosses a wall or an obstacle", i - 1, i, shifted));
+          }
         }
       }
     }
     t.RejectUnknownKeys();
-    config.trajectories.push_back(std::move(spec));
+    e.trajectories.push_back(std::move(spec));
+  }
+}
+
+void ReadPlanError(YamlMap m, Experiment& e) {
+  e.plan_error.wall_shift_m = m.NumberInRange("wall_shift_m", e.plan_error.wall_shift_m, 0.0, 10.0, "m");
+  e.plan_error.bias_m = m.NumberInRange("bias_m", e.plan_error.bias_m, -10.0, 10.0, "m");
+  if (m.Has("biased_wall")) {
+    const std::string label = m.String("biased_wall");
+    int found = -1;
+    for (std::size_t s = 0; s < e.plan.walls().size(); ++s) {
+      if (e.plan.walls()[s].label != label) continue;
+      if (found >= 0) m.Fail("biased_wall", "the label '" + label + "' names more than one wall segment; give the wall a label of its own");
+      found = static_cast<int>(s);
+    }
+    if (found < 0) m.Fail("biased_wall", "no wall labelled '" + label + "' in floor_plan");
+    if (!e.in_plan[static_cast<std::size_t>(found)]) m.Fail("biased_wall", "the wall '" + label + "' is not in the given plan (in_plan: false)");
+    e.plan_error.biased_wall = found;
+  } else if (m.Has("bias_m") && e.plan_error.bias_m != 0.0) {
+    m.Fail("bias_m", "a bias needs the wall it moves: set biased_wall");
+  }
+  m.RejectUnknownKeys();
+}
+
+void ReadChannel(YamlMap m, Experiment& e, const core::PhysicalKeys& keys) {
+  e.channel_max_order = m.Integer("max_order", e.channel_max_order, 0, geometry::kMaxVirtualAnchorOrder);
+  CheckVirtualAnchorCount(m, "max_order", e.plan.walls().size(), e.channel_max_order);
+  e.self_coupling_db = m.NumberInRange("self_coupling_db", e.self_coupling_db, -300.0, 100.0, "dB");
+  ReadOptions(m, channel::ChannelOptionsDescriptor(), keys, e.channel);
+  e.channel.medium = e.medium;
+}
+
+// `measurements`: the model and its keys.
+void ReadMeasurements(YamlMap m, Experiment& e, std::optional<RecordingFiles>& files, const core::PhysicalKeys& keys) {
+  const std::string model = m.String("model", std::string("cir"));
+  if (model == "cir") {
+    e.measurement_model = MeasurementModel::kCir;
+    m.RejectUnknownKeys();
+  } else if (model == "ranges") {
+    e.measurement_model = MeasurementModel::kRangeLevel;
+    ReadOptions(m, channel::RangeLevelOptionsDescriptor(), keys, e.range_level);
+  } else if (model == "ranging") {
+    e.measurement_model = MeasurementModel::kRanging;
+    ReadOptions(m, channel::RangingOptionsDescriptor(), keys, e.ranging);
+  } else if (model == "recorded") {
+    e.measurement_model = MeasurementModel::kRecorded;
+    RecordingFiles f;
+    f.anchors = m.FilePath("anchors");
+    f.ranges = m.FilePath("ranges");
+    if (m.Has("truth")) f.truth = m.FilePath("truth");
+    if (m.Has("start_m")) e.start_m = m.Point3("start_m", 0.0);
+    e.epoch_window_s = m.NumberInRange("epoch_window_s", e.epoch_window_s, 0.0, 3600.0, "s");
+    if (m.Has("range_sigma_m")) e.recorded_range_sigma_m = m.NumberInRange("range_sigma_m", 0.1, 1e-9, kHuge, "m");
+    if (m.Has("speed_mps")) e.recorded_speed_mps = m.NumberInRange("speed_mps", 1.0, 0.0, kHuge, "m/s");
+    m.RejectUnknownKeys();
+    files = f;
+  } else {
+    m.Fail("model", "unknown measurement model '" + model + "' (available: cir, ranges, ranging, recorded)");
+  }
+}
+
+// The channel simulators are planar: every anchor at the trajectories' height.
+void CheckPlanarChannel(YamlMap& root, const Experiment& e) {
+  if (e.measurement_model != MeasurementModel::kCir && e.measurement_model != MeasurementModel::kRangeLevel) return;
+  for (const auto& t : e.trajectories) {
+    for (const auto& a : e.anchors) {
+      if (a.position_m.z() != t.height_m) {
+        root.Fail("anchors", fmt::format("anchor '{}' at z = {} m and trajectory '{}' at height {} m: the cir and ranges "
+                                         "models simulate the plane (give all the same height), use measurements.model "
+                                         "ranging for 3-D geometry",
+                                         a.id, FormatValue(a.position_m.z()), t.name, FormatValue(t.height_m)));
+      }
+    }
+  }
+}
+
+// Reads the recording named by the scenario; its anchors become the scenario's.
+void LoadRecordedData(const std::string& scenario_file, const RecordingFiles& files, Experiment& e) {
+  auto recording = std::make_shared<pipeline::Recording>(LoadRecording(files));
+  for (std::size_t a = 0; a < recording->anchors_m.size(); ++a) {
+    const Vec2 p = recording->anchors_m[a].head<2>();
+    if (!e.plan.walls().empty() && (!e.plan.Encloses(p) || e.plan.InsideObstacle(p))) {
+      throw InputError(fmt::format("{}: anchor '{}' at [{}, {}] m is outside the floor plan of {} (or inside an obstacle)",
+                                   files.anchors, recording->anchor_ids[a], FormatValue(p.x()), FormatValue(p.y()),
+                                   scenario_file));
+    }
+    e.anchors.push_back({recording->anchor_ids[a], recording->anchors_m[a]});
+  }
+  std::optional<Vec3> start = e.start_m;
+  if (!start) start = recording->TruthAt(recording->steps.front().t_s);
+  if (start && !e.plan.walls().empty() && !e.plan.Encloses(start->head<2>())) {
+    throw InputError(fmt::format("{}: the start [{}, {}] m is outside the floor plan", e.start_m ? scenario_file : *files.truth,
+                                 FormatValue(start->x()), FormatValue(start->y())));
+  }
+  e.runs = 1;
+  e.recording = std::move(recording);
+}
+
+// One experiment from a document (the scenario, or one variant of its grid).
+Experiment ReadExperiment(YamlMap& root, const std::string& file, const methods::MethodInfo*& method,
+                          std::optional<RecordingFiles>& files) {
+  Experiment e;
+  e.name = root.String("name");
+  const bool recorded = [&] {
+    if (!root.Has("measurements")) return false;
+    YamlMap peek = root.OptionalMap("measurements");
+    return peek.Has("model") && peek.String("model") == "recorded";
+  }();
+  if (recorded) {
+    for (const char* key : {"anchors", "trajectories", "run_grid", "perturb_initial_position", "agents", "steps"}) {
+      if (root.Has(key)) {
+        root.Fail(key, "not used with measurements.model recorded (the recording has the anchors and the trajectory); remove it");
+      }
+    }
+  }
+  e.seed = root.Unsigned("seed", e.seed);
+  e.runs = root.Integer("runs", e.runs, 1, recorded ? 1 : kMaxRuns);
+  e.threads = root.Integer("threads", e.threads, 0, kMaxThreads);
+  e.perturb_initial_position = root.Boolean("perturb_initial_position", e.perturb_initial_position);
+  {
+    YamlMap grid = root.OptionalMap("run_grid");
+    e.run_grid.nx = grid.Integer("nx", e.run_grid.nx, 1, 1000);
+    e.run_grid.ny = grid.Integer("ny", e.run_grid.ny, 1, 1000);
+    e.run_grid.spacing_m = grid.NumberInRange("spacing_m", e.run_grid.spacing_m, 0.0, 10.0, "m");
+    grid.RejectUnknownKeys();
+  }
+  ReadMedium(root.OptionalMap("medium"), e);
+  const std::map<std::string, double> materials = ReadMaterials(root.OptionalMap("materials"));
+  if (root.Has("floor_plan")) e.plan = ReadFloorPlan(root.Map("floor_plan"), materials, &e.in_plan);
+  ReadPlanError(root.OptionalMap("floor_plan_error"), e);
+  ReadAnchors(root, recorded, e);
+  ReadTrajectories(root, recorded, e);
+
+  // The method first by name: whether it is joint decides which keys are known.
+  YamlMap m = root.Map("method");
+  const std::string name = m.String("name");
+  method = methods::FindMethod(name);
+  if (method == nullptr) m.Fail("name", "unknown method '" + name + "' (available: " + methods::MethodNames() + ")");
+  if (method->joint && !recorded) {
+    e.agents = root.Integer("agents", e.agents, 0, static_cast<int>(e.trajectories.size()));
+    e.steps = root.Integer("steps", e.steps, 0, static_cast<int>(kMaxStepsPerTrajectory));
+    for (const auto& t : e.trajectories) {
+      if (t.dt_s != e.trajectories.front().dt_s) {
+        root.Fail("trajectories", "the agents of a joint method walk in common steps: give every trajectory the same dt_s");
+      }
+    }
   }
 
-  ReadChannel(root.OptionalMap("channel"), config);
-  config.mpc = ReadMpc(root.OptionalMap("mpc"));
-  config.mint = ReadMint(root.OptionalMap("mint"), config.plan.walls().size());
-  config.slam = ReadSlam(root.OptionalMap("slam"), config.plan.walls().size());
-  ReadMeasurements(root.OptionalMap("measurements"), scenario);
+  ReadMeasurements(root.OptionalMap("measurements"), e, files, pipeline::PhysicalKeysOf(e));
+  if (files) LoadRecordedData(file, *files, e);
+  const core::PhysicalKeys keys = pipeline::PhysicalKeysOf(e);
+  ReadChannel(root.OptionalMap("channel"), e, keys);
+  ReadOptions(root.OptionalMap("mpc"), dsp::MpcExtractorOptionsDescriptor(), keys, e.mpc);
+  if (e.measurement_model == MeasurementModel::kCir || e.measurement_model == MeasurementModel::kRangeLevel) {
+    YamlMap channel = root.OptionalMap("channel");
+    CheckWindowCoversLos(channel, e);
+  }
+  CheckPlanarChannel(root, e);
   {
     YamlMap evaluation = root.OptionalMap("evaluation");
-    YamlMap divergence = evaluation.OptionalMap("divergence");
-    config.divergence.threshold_m = divergence.NumberInRange("threshold_m", config.divergence.threshold_m, 1e-9, kHuge, "m");
-    config.divergence.last_fraction =
-        divergence.NumberInRange("last_fraction", config.divergence.last_fraction, 1e-9, 1.0, "");
-    divergence.RejectUnknownKeys();
-    config.map_cutoff_m = evaluation.NumberInRange("map_cutoff_m", config.map_cutoff_m, 1e-9, kHuge, "m");
+    ReadOptions(evaluation.OptionalMap("divergence"), eval::DivergenceRuleDescriptor(), keys, e.divergence);
+    e.map_cutoff_m = evaluation.NumberInRange("map_cutoff_m", e.map_cutoff_m, 1e-9, kHuge, "m");
     evaluation.RejectUnknownKeys();
   }
-  root.RejectUnknownKeys();
-  if (recorded) LoadRecordedData(scenario);
 
-  if (recorded && overrides.runs && *overrides.runs != 1) {
-    throw InputError("--runs: recorded data are one run (got " + std::to_string(*overrides.runs) + ")");
+  // The method's options through its descriptor; the plan bounds its virtual-anchor orders.
+  std::shared_ptr<void> options = method->make_options();
+  ReadOptionsObject(m, *method->descriptor, keys, options.get());
+  for (const char* order_key : {"max_order", "prior_max_order"}) {
+    const core::OptionField* field = method->descriptor->Find(order_key);
+    if (field == nullptr || field->kind() != core::OptionKind::kInteger) continue;
+    const auto order = static_cast<int>(std::get<std::int64_t>(field->Get(options.get())));
+    CheckVirtualAnchorCount(m, order_key, e.plan.walls().size(), order);
   }
-  ApplyOverrides(overrides, config.runs, config.seed, config.threads);
+  const methods::MethodInfo* info = method;
+  if (info->check) {
+    methods::World world;
+    for (const auto& a : e.anchors) world.anchors.push_back({a.id, a.position_m});
+    world.floor_plan = e.plan;
+    const auto problems = info->check(options.get(), world);
+    if (!problems.empty()) m.FailProblem(problems.front());
+  }
+  e.method = pipeline::BindMethod(*info, options);
+  e.method.options_json = OptionsObjectToJson(*info->descriptor, options.get()).dump();
+  // Checks that need the world: a method that estimates with the anchors must be given some.
+  if (info->input == methods::MethodInput::kRangeSets && e.anchors.empty()) {
+    root.Fail("anchors", "method '" + info->name + "' needs at least one anchor");
+  }
+  if (info->input == methods::MethodInput::kLinkCirs && e.measurement_model != MeasurementModel::kCir) {
+    root.Fail("measurements", "method '" + info->name + "' consumes CIRs: measurements.model must be cir");
+  }
+  if (info->input == methods::MethodInput::kLinkCirs && e.channel_max_order > 3) {
+    YamlMap channel = root.OptionalMap("channel");
+    channel.Fail("max_order", fmt::format("{} is above 3, the highest order of the links' image-source paths",
+                                          e.channel_max_order));
+  }
+  return e;
+}
+
+}  // namespace
+
+Scenario LoadScenario(const std::string& path, const ScenarioOverrides& overrides) {
+  auto origins = std::make_shared<YamlOrigins>(path);
+  Scenario scenario;
+  scenario.file = path;
+  scenario.document = LoadYamlWithExtends(path, *origins);
+  {
+    YamlMap root(scenario.document, "", origins);
+    RejectOldLayout(root, scenario.document);
+  }
+  for (GridVariant& g : ExpandGrid(scenario.document, origins)) {
+    YamlMap root(g.document, "", origins);
+    std::optional<RecordingFiles> files;
+    pipeline::Variant v;
+    v.name = g.name;
+    v.overrides = std::move(g.overrides);
+    v.experiment = ReadExperiment(root, path, scenario.method, files);
+    root.RejectUnknownKeys();
+    if (files) scenario.recording_files = files;
+    if (v.experiment.recording && overrides.runs && *overrides.runs != 1) {
+      throw InputError("--runs: recorded data are one run (got " + std::to_string(*overrides.runs) + ")");
+    }
+    ApplyOverrides(overrides, v.experiment.runs, v.experiment.seed, v.experiment.threads);
+    if (v.name.empty()) v.name = v.experiment.name;
+    scenario.variants.push_back(std::move(v));
+  }
   return scenario;
 }
 

@@ -41,60 +41,6 @@ std::map<std::string, double> ReadMaterials(YamlMap table) {
   return materials;
 }
 
-channel::PulseOptions ReadPulse(YamlMap m) {
-  channel::PulseOptions o;
-  o.carrier_hz = m.NumberInRange("carrier_hz", o.carrier_hz, 1.0, 1e12, "Hz");
-  o.rolloff = m.NumberInRange("rolloff", o.rolloff, 0.0, 1.0, "");
-  o.duration_s = m.NumberInRange("duration_s", o.duration_s, 1e-12, 1e-3, "s");
-  m.RejectUnknownKeys();
-  Check(o, m);
-  return o;
-}
-
-channel::DiffuseOptions ReadDiffuse(YamlMap m) {
-  channel::DiffuseOptions o;
-  o.enabled = m.Boolean("enabled", o.enabled);
-  o.power_ratio_db = m.NumberInRange("power_ratio_db", o.power_ratio_db, -200.0, 100.0, "dB");
-  o.decay_s = m.NumberInRange("decay_s", o.decay_s, 1e-12, 1.0, "s");
-  o.rise_s = m.NumberInRange("rise_s", o.rise_s, 1e-12, 1.0, "s");
-  o.rise_weight = m.NumberInRange("rise_weight", o.rise_weight, 0.0, 1.0, "");
-  m.RejectUnknownKeys();
-  Check(o, m);
-  return o;
-}
-
-dsp::MpcExtractorOptions ReadMpc(YamlMap m) {
-  dsp::MpcExtractorOptions o;
-  o.max_components = m.Integer("max_components", o.max_components, 1, 1000);
-  o.relative_threshold_db = m.NumberInRange("relative_threshold_db", o.relative_threshold_db, -300.0, -1e-9, "dB");
-  o.readjust = m.Boolean("readjust", o.readjust);
-  m.RejectUnknownKeys();
-  Check(o, m);
-  return o;
-}
-
-estimation::ConstantVelocityOptions ReadMotion(YamlMap m, const estimation::ConstantVelocityOptions& defaults) {
-  estimation::ConstantVelocityOptions o = defaults;
-  o.accel_sigma_mps2 = m.NumberInRange("accel_sigma_mps2", o.accel_sigma_mps2, 1e-9, kHuge, "m/s^2");
-  m.RejectUnknownKeys();
-  return o;
-}
-
-estimation::RangeVarianceOptions ReadVariance(YamlMap m, const estimation::RangeVarianceOptions& defaults) {
-  estimation::RangeVarianceOptions o = defaults;
-  o.enabled = m.Boolean("enabled", o.enabled);
-  o.window_min_m = m.NumberInRange("window_min_m", o.window_min_m, 1e-6, kHuge, "m");
-  o.window_max_m = m.NumberInRange("window_max_m", o.window_max_m, 1e-6, kHuge, "m");
-  o.min_samples = m.Integer("min_samples", o.min_samples, 3, 1'000'000);
-  o.default_sigma_m = m.NumberInRange("default_sigma_m", o.default_sigma_m, 1e-9, kHuge, "m");
-  o.max_variance_factor = m.NumberInRange("max_variance_factor", o.max_variance_factor, 1.0, kHuge, "");
-  o.min_sigma_m = m.NumberInRange("min_sigma_m", o.min_sigma_m, 1e-9, kHuge, "m");
-  o.overlap_distance_m = m.NumberInRange("overlap_distance_m", o.overlap_distance_m, 0.0, kHuge, "m");
-  m.RejectUnknownKeys();
-  Check(o, m);
-  return o;
-}
-
 geometry::FloorPlan ReadFloorPlan(YamlMap m, const std::map<std::string, double>& materials, std::vector<bool>* in_plan) {
   std::vector<geometry::Wall> walls;
   if (in_plan != nullptr) in_plan->clear();
@@ -158,8 +104,16 @@ geometry::FloorPlan ReadFloorPlan(YamlMap m, const std::map<std::string, double>
       obstacles.push_back(obstacle);
     }
   }
+  // Walls are vertical and span floor to ceiling (2.5-D); a plan without heights reaches up without
+  // end, which keeps every planar scenario as it was.
+  const double floor_z_m = m.NumberInRange("floor_z_m", 0.0, -kHuge, kHuge, "m");
+  double ceiling_z_m = geometry::kNoCeiling_m;
+  if (m.Has("ceiling_z_m")) {
+    ceiling_z_m = m.NumberInRange("ceiling_z_m", 0.0, -kHuge, kHuge, "m");
+    if (!(ceiling_z_m > floor_z_m)) m.Fail("ceiling_z_m", fmt::format("{} m must be above floor_z_m ({} m)", FormatValue(ceiling_z_m), FormatValue(floor_z_m)));
+  }
   m.RejectUnknownKeys();
-  return geometry::FloorPlan(std::move(walls), std::move(obstacles));
+  return geometry::FloorPlan(std::move(walls), std::move(obstacles), floor_z_m, ceiling_z_m);
 }
 
 void CheckInside(const geometry::FloorPlan& plan, const Vec2& p, YamlMap& where, const std::string& key,

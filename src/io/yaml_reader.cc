@@ -66,7 +66,12 @@ void Merge(YAML::Node base, const YAML::Node& over, const std::string& path, con
     const std::string key_path = JoinPath(path, key);
     if (key == "extends" && path.empty()) continue;
     const YAML::Node& const_base = base;  // const lookup: non-const operator[] would insert
-    if (kv.second.IsMap() && const_base[key] && const_base[key].IsMap()) {
+    // A scenario that switches to another method does not inherit the base's method options:
+    // `method` maps with different names replace each other instead of merging.
+    const bool other_method = path.empty() && key == "method" && kv.second.IsMap() && const_base[key] &&
+                              const_base[key].IsMap() && kv.second["name"] && const_base[key]["name"] &&
+                              kv.second["name"].Scalar() != const_base[key]["name"].Scalar();
+    if (kv.second.IsMap() && const_base[key] && const_base[key].IsMap() && !other_method) {
       Merge(base[key], kv.second, key_path, file, origins);
     } else if (const_base[key]) {
       base[key] = kv.second;
@@ -286,6 +291,17 @@ Vec2 YamlMap::Point(const std::string& key) {
   if (!n) Fail(key, "missing (required), expected [x, y] in metres");
   if (!n.IsSequence() || n.size() != 2) Fail(key, "expected 2 numbers [x, y], got " + ScalarText(n));
   return {ToNumber(n[0], KeyPath(key) + "[0]"), ToNumber(n[1], KeyPath(key) + "[1]")};
+}
+
+Vec3 YamlMap::Point3(const std::string& key, double default_z_m) {
+  const YAML::Node n = Get(key);
+  if (!n) Fail(key, "missing (required), expected [x, y, z] or [x, y] in metres");
+  if (!n.IsSequence() || (n.size() != 2 && n.size() != 3)) {
+    Fail(key, "expected 3 numbers [x, y, z] or 2 numbers [x, y], got " + ScalarText(n));
+  }
+  const std::string path = KeyPath(key);
+  return Vec3(ToNumber(n[0], path + "[0]"), ToNumber(n[1], path + "[1]"),
+              n.size() == 3 ? ToNumber(n[2], path + "[2]") : default_z_m);
 }
 
 std::vector<Vec2> YamlMap::Points(const std::string& key, std::size_t min_count) {

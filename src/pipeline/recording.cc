@@ -5,7 +5,7 @@
 
 namespace mirage::pipeline {
 
-std::optional<Vec2> Recording::TruthAt(double t_s) const {
+std::optional<Vec3> Recording::TruthAt(double t_s) const {
   if (truth.empty() || t_s < truth.front().t_s || t_s > truth.back().t_s) return std::nullopt;
   const auto after = std::lower_bound(truth.begin(), truth.end(), t_s,
                                       [](const TruthSample& s, double t) { return s.t_s < t; });

@@ -14,8 +14,9 @@
 #include <gtest/gtest.h>
 
 #include "mirage/io/scenario.h"
-#include "mirage/pipeline/mint_experiment.h"
-#include "mirage/pipeline/mint_summary.h"
+#include "mirage/methods/slam/slam_tracker.h"
+#include "mirage/pipeline/runner.h"
+#include "mirage/pipeline/summary.h"
 
 namespace mirage::pipeline {
 namespace {
@@ -31,21 +32,23 @@ TEST(SeminarRoomSlam, AnchorsOnlyTracksWithinSixCentimetresAtP90AndMapsTrueVas) 
   overrides.threads = 0;  // all cores; the results do not depend on it
   const io::Scenario scenario =
       io::LoadScenario(std::string(MIRAGE_SOURCE_DIR) + "/examples/seminar_room_slam.yaml", overrides);
-  ASSERT_EQ(scenario.mint.method, Method::kSlam);
-  ASSERT_EQ(scenario.mint.slam.prior_max_order, 0) << "the example must start from the anchors alone";
+  const Experiment& config = scenario.variants.front().experiment;
+  ASSERT_EQ(config.method.name, "slam");
+  const auto& slam = *static_cast<const methods::slam::SlamOptions*>(config.method.options.get());
+  ASSERT_EQ(slam.prior_max_order, 0) << "the example must start from the anchors alone";
 
   // Act
-  const auto result = RunMintExperiment(scenario.mint);
-  const MintSummary summary = Summarize(scenario.mint, result);
+  const auto result = RunExperiment(scenario.variants);
+  const VariantSummary summary = Summarize(scenario.variants, result).front();
 
   // Assert
   EXPECT_EQ(summary.overall.runs, 2 * kRuns);
-  for (const auto& t : summary.trajectories) {
+  for (const auto& t : summary.groups) {
     ASSERT_TRUE(t.map.has_value()) << t.name;
     const MapSummary& map = *t.map;
     std::printf("%s (seed %llu, %d runs): p90 %.4f m, diverged %d; map per run: %.1f scored, %.1f matched, "
                 "%.1f false, matched error %.3f m\n",
-                t.name.c_str(), static_cast<unsigned long long>(scenario.mint.seed), t.runs, t.error.p90,
+                t.name.c_str(), static_cast<unsigned long long>(config.seed), t.runs, t.error.p90,
                 t.diverged_runs, map.estimated_mean, map.matched_mean, map.false_mean,
                 map.matched_error_mean_m.value_or(-1.0));
     EXPECT_LE(t.error.p90, kP90Bound_m) << t.name;

@@ -11,8 +11,8 @@
 #include <gtest/gtest.h>
 
 #include "mirage/io/scenario.h"
-#include "mirage/pipeline/mint_experiment.h"
-#include "mirage/pipeline/mint_summary.h"
+#include "mirage/pipeline/runner.h"
+#include "mirage/pipeline/summary.h"
 
 namespace mirage::pipeline {
 namespace {
@@ -26,15 +26,16 @@ io::Scenario SeminarRoom() {
   return io::LoadScenario(std::string(MIRAGE_SOURCE_DIR) + "/examples/seminar_room.yaml", overrides);
 }
 
-MintSummary RunAndPrint(const MintExperimentConfig& config, const char* label) {
-  const auto result = RunMintExperiment(config);
-  const auto summary = Summarize(config, result);
+VariantSummary RunAndPrint(const io::Scenario& scenario, const char* label) {
+  const auto result = RunExperiment(scenario.variants);
+  const auto summary = Summarize(scenario.variants, result).front();
+  const Experiment& config = scenario.variants.front().experiment;
   std::printf("%s (seed %llu, %d runs per trajectory): p50 %.4f m, p90 %.4f m, rmse %.4f m, max %.4f m, "
               "diverged %d of %d, %.2f s\n",
               label, static_cast<unsigned long long>(config.seed), config.runs, summary.overall.error.p50,
               summary.overall.error.p90, summary.overall.error.rmse, summary.overall.error.max,
               summary.overall.diverged_runs, summary.overall.runs, result.wall_s);
-  for (const auto& t : summary.trajectories) {
+  for (const auto& t : summary.groups) {
     std::printf("  %s: p90 %.4f m, diverged %d\n", t.name.c_str(), t.error.p90, t.diverged_runs);
   }
   return summary;
@@ -45,13 +46,13 @@ TEST(SeminarRoom, TracksWithinTenCentimetresAtP90WithoutDivergence) {
   const io::Scenario scenario = SeminarRoom();
 
   // Act
-  const MintSummary summary = RunAndPrint(scenario.mint, "seminar room, T_p = 0.5 ns");
+  const VariantSummary summary = RunAndPrint(scenario, "seminar room, T_p = 0.5 ns");
 
   // Assert
   EXPECT_EQ(summary.overall.runs, 2 * kRuns);
   EXPECT_LE(summary.overall.error.p90, 0.10);
   EXPECT_EQ(summary.overall.diverged_runs, 0);
-  for (const auto& t : summary.trajectories) EXPECT_LE(t.error.p90, 0.10) << t.name;
+  for (const auto& t : summary.groups) EXPECT_LE(t.error.p90, 0.10) << t.name;
 }
 
 TEST(SeminarRoom, TracksWorseWithTheOneNanosecondPulse) {
@@ -59,11 +60,11 @@ TEST(SeminarRoom, TracksWorseWithTheOneNanosecondPulse) {
   // range standard deviation (Eq. 3.28) and makes neighbouring paths overlap.
   const io::Scenario short_pulse = SeminarRoom();
   io::Scenario long_pulse = SeminarRoom();
-  long_pulse.mint.channel.pulse.duration_s = 1.0e-9;
+  long_pulse.variants.front().experiment.channel.pulse.duration_s = 1.0e-9;
 
   // Act
-  const MintSummary at_half_ns = RunAndPrint(short_pulse.mint, "seminar room, T_p = 0.5 ns");
-  const MintSummary at_one_ns = RunAndPrint(long_pulse.mint, "seminar room, T_p = 1 ns");
+  const VariantSummary at_half_ns = RunAndPrint(short_pulse, "seminar room, T_p = 0.5 ns");
+  const VariantSummary at_one_ns = RunAndPrint(long_pulse, "seminar room, T_p = 1 ns");
 
   // Assert
   EXPECT_GT(at_one_ns.overall.error.p90, at_half_ns.overall.error.p90);

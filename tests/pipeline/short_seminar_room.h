@@ -32,15 +32,22 @@ inline std::vector<Vec2> TruncatePolyline(const std::vector<Vec2>& waypoints_m, 
   return out;
 }
 
-// The seminar room with `runs` runs per trajectory, each trajectory cut to length_m (2 m = 40
+// An example scenario with `runs` runs per trajectory, each trajectory cut to length_m (2 m = 40
 // steps of 5 cm), on `threads` threads.
-inline io::Scenario ShortSeminarRoom(int runs, double length_m = 2.0, int threads = 1) {
+inline io::Scenario ShortExample(const std::string& file, int runs, double length_m = 2.0, int threads = 1) {
   io::ScenarioOverrides overrides;
   overrides.runs = runs;
   overrides.threads = threads;
-  io::Scenario scenario = io::LoadScenario(ExamplePath("seminar_room.yaml"), overrides);
-  for (auto& t : scenario.mint.trajectories) t.waypoints_m = TruncatePolyline(t.waypoints_m, length_m);
+  io::Scenario scenario = io::LoadScenario(ExamplePath(file), overrides);
+  for (auto& v : scenario.variants) {
+    for (auto& t : v.experiment.trajectories) t.waypoints_m = TruncatePolyline(t.waypoints_m, length_m);
+  }
   return scenario;
+}
+
+// The seminar room (MINT) cut short.
+inline io::Scenario ShortSeminarRoom(int runs, double length_m = 2.0, int threads = 1) {
+  return ShortExample("seminar_room.yaml", runs, length_m, threads);
 }
 
 }  // namespace mirage::pipeline::testing

@@ -1,6 +1,9 @@
 // SPDX-License-Identifier: MIT
-// Outputs of `mirage run`: the result table, the JSON report (keys of ROADMAP.md plus the
-// sinr_db block), and the CSV files (tracks, runs, virtual anchors).
+// The outputs of `mirage run`, one schema for every method (ROADMAP.md "Interfaces"): the result
+// table on the console, the JSON report (the top-level keys every method has, `groups` per
+// trajectory, `variants` per grid point, `health`, and the method's block), and the CSV files
+// (tracks.csv and runs.csv for every method; paths.csv, map.csv, variants.csv and
+// error_by_step.csv when there is something to put in them).
 #pragma once
 
 #include <string>
@@ -9,24 +12,24 @@
 #include <nlohmann/json.hpp>
 
 #include "mirage/io/scenario.h"
-#include "mirage/pipeline/mint_experiment.h"
-#include "mirage/pipeline/mint_summary.h"
+#include "mirage/pipeline/runner.h"
+#include "mirage/pipeline/summary.h"
 
 namespace mirage::io {
 
 /// The JSON report.
-nlohmann::json MakeJsonReport(const Scenario& scenario, const pipeline::MintExperimentResult& result,
-                              const pipeline::MintSummary& summary);
+nlohmann::json MakeJsonReport(const Scenario& scenario, const pipeline::ExperimentResult& result,
+                              const std::vector<pipeline::VariantSummary>& summaries);
 
-/// The result table printed by `mirage run`.
-std::string FormatResultTable(const Scenario& scenario, const pipeline::MintSummary& summary);
+/// The result table printed by `mirage run`, with a warning line for each run that drifted away.
+std::string FormatResultTable(const Scenario& scenario, const pipeline::ExperimentResult& result,
+                              const std::vector<pipeline::VariantSummary>& summaries);
 
 /// Writes json to path (pretty-printed); throws InputError when the file cannot be written.
 void WriteJson(const std::string& path, const nlohmann::json& json);
 
-/// Writes tracks.csv, runs.csv, paths.csv (ground truth per specular path, first run of each
-/// trajectory) and virtual_anchors.csv (the tracker's VAs) into dir (created if needed); returns
-/// the paths written.
-std::vector<std::string> WriteCsv(const std::string& dir, const Scenario& scenario, const pipeline::MintExperimentResult& result);
+/// Writes the CSV files into dir (created if needed); returns the paths written.
+std::vector<std::string> WriteCsv(const std::string& dir, const Scenario& scenario, const pipeline::ExperimentResult& result,
+                                  const std::vector<pipeline::VariantSummary>& summaries);
 
 }  // namespace mirage::io

@@ -8,14 +8,10 @@
 #include <string>
 #include <vector>
 
-#include "mirage/channel/cir_synthesizer.h"
 #include "mirage/core/types.h"
-#include "mirage/dsp/mpc_extractor.h"
-#include "mirage/estimation/motion/constant_velocity.h"
 #include "mirage/geometry/floor_plan.h"
 #include "mirage/io/scenario.h"
 #include "mirage/io/yaml_reader.h"
-#include "mirage/estimation/range_variance_estimator.h"
 
 namespace mirage::io {
 
@@ -54,16 +50,6 @@ std::map<std::string, double> ReadMaterials(YamlMap table);
 geometry::FloorPlan ReadFloorPlan(YamlMap m, const std::map<std::string, double>& materials,
                                   std::vector<bool>* in_plan = nullptr);
 
-/// `channel.pulse`.
-channel::PulseOptions ReadPulse(YamlMap m);
-/// `channel.diffuse`.
-channel::DiffuseOptions ReadDiffuse(YamlMap m);
-/// `mpc`.
-dsp::MpcExtractorOptions ReadMpc(YamlMap m);
-/// A `variance` section; absent keys take `defaults` (the method's own defaults).
-estimation::RangeVarianceOptions ReadVariance(YamlMap m, const estimation::RangeVarianceOptions& defaults = {});
-/// A `motion` section (constant-velocity model); absent keys take `defaults`.
-estimation::ConstantVelocityOptions ReadMotion(YamlMap m, const estimation::ConstantVelocityOptions& defaults = {});
 
 /// Fails at `key` when p is not enclosed by the plan's walls or lies inside an obstacle; `what`
 /// names the point in the message ("anchor 'A1'").

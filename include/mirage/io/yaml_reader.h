@@ -35,7 +35,8 @@ class YamlOrigins {
 };
 
 /// Loads a YAML file; a top-level `extends: other.yaml` (relative to the file) loads that file
-/// first and merges this one over it (maps recursively, everything else replaced).
+/// first and merges this one over it (maps recursively, everything else replaced; a `method` map
+/// naming another method replaces the base's instead of merging with it).
 /// Throws InputError for missing files and syntax errors.
 YAML::Node LoadYamlWithExtends(const std::string& path, YamlOrigins& origins);
 
@@ -74,6 +75,8 @@ class YamlMap {
   std::string FilePath(const std::string& key);
   /// A point [x, y] (m).
   Vec2 Point(const std::string& key);
+  /// A point [x, y, z] or [x, y] (m); the missing z is `default_z_m`.
+  Vec3 Point3(const std::string& key, double default_z_m);
   /// A list of points [[x, y], ...] with at least min_count entries.
   std::vector<Vec2> Points(const std::string& key, std::size_t min_count);
   /// A nested map (required).

@@ -43,6 +43,7 @@ struct PathSinr {
 struct StepOutput {
   std::vector<AgentEstimate> agents;  ///< one per tracked agent, in World::agents order
   int associations = 0;               ///< measurements that entered the update
+  int expected = 0;                   ///< measurements the model expected (visible paths, links' paths)
   bool relocalized = false;           ///< the track was declared lost and restarted
   bool constrained = false;           ///< a constraint (the floor plan, a speed limit) moved the estimate
   bool rejected_update = false;       ///< the update was skipped (S not positive definite)

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "mirage/channel/cir_synthesizer.h"
+#include "mirage/core/physical_keys.h"
 #include "mirage/core/types.h"
 #include "mirage/dsp/mpc_extractor.h"
 #include "mirage/geometry/floor_plan.h"
@@ -39,8 +40,9 @@ struct World {
   channel::ChannelOptions channel;
   /// Multipath-component extraction, for methods that consume CIRs.
   dsp::MpcExtractorOptions mpc;
-  /// Time between epochs (s), if regular: the trajectories' step time.
-  std::optional<double> step_s;
+  /// The scenario's physical facts (range noise, step time, walking speed, detection, clutter):
+  /// what defaults that depend on noise or motion are derived from.
+  core::PhysicalKeys physical;
 };
 
 }  // namespace mirage::methods

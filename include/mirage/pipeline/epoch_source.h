@@ -21,6 +21,9 @@ struct SourceStep {
   /// Simulations of anchor channels: the true specular paths per anchor (PathTruth::va_id refers
   /// to the source's channel VA set).
   std::vector<std::vector<channel::PathTruth>> paths;
+  /// Simulations without a channel model behind their ranges (ranging with multipath): the ids of
+  /// the channel VAs whose paths were measured, for the map's truth.
+  std::vector<int> measured_channel_vas;
   double simulate_s = 0.0;  ///< CPU time spent making this epoch (s)
 };
 

@@ -17,11 +17,13 @@
 #include "mirage/channel/range_level_simulator.h"
 #include "mirage/channel/ranging_simulator.h"
 #include "mirage/core/medium.h"
+#include "mirage/core/physical_keys.h"
 #include "mirage/core/types.h"
 #include "mirage/dsp/mpc_extractor.h"
 #include "mirage/eval/error_stats.h"
 #include "mirage/geometry/floor_plan.h"
 #include "mirage/methods/estimator.h"
+#include "mirage/methods/registry.h"
 #include "mirage/methods/world.h"
 #include "mirage/pipeline/recording.h"
 
@@ -72,16 +74,10 @@ struct PlanError {
   double bias_m = 0.0;
 };
 
-/// The kind of input a method consumes.
-enum class MethodInput {
-  kRangeSets,  ///< unlabeled ranges per anchor (from MPC extraction, a ranging system or a file)
-  kLinkCirs,   ///< the CIR of every link the method names (methods that extract themselves)
-};
-
 /// A method bound to its options: what the runner needs to make its estimators.
 struct MethodSpec {
   std::string name;
-  MethodInput input = MethodInput::kRangeSets;
+  methods::MethodInput input = methods::MethodInput::kRangeSets;
   /// One estimator tracks all walking agents at once (cooperative tracking); otherwise each
   /// trajectory is run on its own.
   bool joint = false;
@@ -89,6 +85,12 @@ struct MethodSpec {
   std::function<std::unique_ptr<methods::Estimator>(const methods::World&)> create;
   /// The links a kLinkCirs method measures.
   std::function<std::vector<channel::LinkSpec>(const methods::World&)> links;
+  /// The standard deviation of the start position the method assumes (m): a perturbed start
+  /// (Experiment::perturb_initial_position) is drawn with it.
+  double start_sigma_m = 0.1;
+  /// The method's options object (the struct its descriptor describes), for callers that know
+  /// the method (benchmarks, tests).
+  std::shared_ptr<const void> options;
   /// The method's effective options, as the report records them (set by io).
   std::string options_json;
 };
@@ -124,16 +126,19 @@ struct Experiment {
   channel::RangingOptions ranging;
   std::shared_ptr<const Recording> recording;  ///< kRecorded
   double epoch_window_s = 0.0;                  ///< recorded data: the epoch rule's window
+  /// Recorded data: the range noise and walking speed the recording's owner states (the
+  /// physical facts a file cannot show), if given.
+  std::optional<double> recorded_range_sigma_m;
+  std::optional<double> recorded_speed_mps;
 
   // What the estimator is told.
   PlanError plan_error;
   /// Where the estimator starts on recorded data without truth (m); empty: the truth at the first
   /// epoch, or, without truth, self-initialisation from the first epochs.
   std::optional<Vec3> start_m;
-  /// Start at a draw from N(true start, sigma_start^2 I) (the thesis starts at the true start
-  /// with that variance, Tab. 3.1) instead of at the true start.
+  /// Start at a draw from N(true start, sigma^2 I), sigma the method's MethodSpec::start_sigma_m
+  /// (the thesis starts at the true start with that variance, Tab. 3.1), not at the true start.
   bool perturb_initial_position = false;
-  double start_sigma_m = 0.1;
 
   MethodSpec method;
 
@@ -142,7 +147,18 @@ struct Experiment {
   double map_cutoff_m = 0.5;  ///< OSPA cut-off of the map error (m)
 };
 
+/// The method of `info` bound to its options (an object of the struct info.descriptor describes,
+/// shared by every estimator made from it); options_json is left to the caller.
+MethodSpec BindMethod(const methods::MethodInfo& info, std::shared_ptr<const void> options);
+
 /// Problems with the experiment beyond what the parser checks, empty if valid.
 std::vector<std::string> Validate(const Experiment& experiment);
+
+/// The scenario's physical facts, as far as it states them: the range noise of a ranging model
+/// or a recording's stated one, detection probability and clutter rate of the range models, the
+/// trajectories' common step time and the largest walking speed (or a recording's stated speed
+/// and its epochs' median interval). The defaults that depend on noise or motion are derived
+/// from these (core/options_descriptor.h).
+core::PhysicalKeys PhysicalKeysOf(const Experiment& experiment);
 
 }  // namespace mirage::pipeline

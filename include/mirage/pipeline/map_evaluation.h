@@ -12,7 +12,6 @@
 
 #include "mirage/geometry/virtual_anchor.h"
 #include "mirage/methods/estimator.h"
-#include "mirage/methods/slam/slam_tracker.h"
 
 namespace mirage::pipeline {
 
@@ -23,20 +22,18 @@ struct MapScore {
   double ospa_cardinality_m = 0.0;   ///< its cardinality part (m)
   int estimated = 0;    ///< map VAs scored: not filtered, associated at least once, anchors excluded
   int discovered = 0;   ///< VAs found by discovery (filtered ones included)
-  int filtered = 0;     ///< map VAs the VA filter excludes at the end
+  int filtered = 0;     ///< map VAs not scored (excluded by the method's filter or never used)
   int true_vas = 0;     ///< true VAs (order >= 1) visible at some step of the run
   int matched = 0;      ///< scored VAs assigned to a true VA closer than the cut-off
   int false_vas = 0;    ///< scored VAs without such a match
   std::optional<double> matched_mean_error_m;  ///< mean distance of the matched pairs (m)
 };
 
-/// Scores `map` against the channel VAs with ids in visible_channel_ids, per anchor (a VA of
-/// anchor 1 never matches a true VA of anchor 2); cutoff_m is the OSPA cut-off c.
-/// The same for a method's map features: the scored features (MapFeature::scored) against the
-/// true VAs; `unscored` counts the other features that are no physical anchor.
+/// Scores a method's map features, the scored ones (MapFeature::scored), against the channel VAs
+/// with ids in visible_channel_ids, per anchor (a VA of anchor 1 never matches a true VA of
+/// anchor 2); cutoff_m is the OSPA cut-off c. `filtered` counts the features that are neither
+/// scored nor physical anchors.
 MapScore EvaluateMap(std::span<const methods::MapFeature> map, const geometry::VirtualAnchorSet& channel_vas,
-                     const std::set<int>& visible_channel_ids, double cutoff_m);
-MapScore EvaluateMap(std::span<const methods::slam::MapVa> map, const geometry::VirtualAnchorSet& channel_vas,
                      const std::set<int>& visible_channel_ids, double cutoff_m);
 
 }  // namespace mirage::pipeline

@@ -24,22 +24,22 @@ struct RecordedStep {
 /// A true position at one time.
 struct TruthSample {
   double t_s = 0.0;
-  Vec2 position_m = Vec2::Zero();
+  Vec3 position_m = Vec3::Zero();  ///< z is 0 when truth.csv has no z_m column
 };
 
 /// One recorded run.
 struct Recording {
   std::vector<std::string> anchor_ids;
-  std::vector<Vec2> anchors_m;
-  /// Heights (m) when anchors.csv has z_m; the 2-D methods do not use them.
-  std::vector<std::optional<double>> anchor_heights_m;
+  std::vector<Vec3> anchors_m;    ///< z is 0 when anchors.csv has no z_m column
+  bool anchors_have_z = false;    ///< anchors.csv has a z_m column
   std::vector<RecordedStep> steps;  ///< strictly increasing t_s
   std::vector<TruthSample> truth;   ///< strictly increasing t_s; empty when there is no truth file
+  bool truth_has_z = false;         ///< truth.csv has a z_m column
 
   [[nodiscard]] bool has_truth() const { return !truth.empty(); }
   /// The true position at t_s, linearly interpolated between truth samples; empty outside the
   /// truth's time span (or without truth).
-  [[nodiscard]] std::optional<Vec2> TruthAt(double t_s) const;
+  [[nodiscard]] std::optional<Vec3> TruthAt(double t_s) const;
 };
 
 }  // namespace mirage::pipeline

@@ -76,7 +76,10 @@ StepOutput CoopEstimator::Process(const core::Epoch& epoch) {
     agent.covariance_m2.topLeftCorner<2, 2>() = tracker_.PositionCovariance(m);
     out.agents.push_back(agent);
   }
-  for (const auto& link : info.links) out.associations += link.associated;
+  for (const auto& link : info.links) {
+    out.associations += link.associated;
+    out.expected += link.expected;
+  }
   out.rejected_update = info.update.rejection == estimation::UpdateRejection::kNotPositiveDefinite;
   return out;
 }

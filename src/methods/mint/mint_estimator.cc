@@ -36,6 +36,7 @@ StepOutput MintEstimator::Process(const core::Epoch& epoch) {
   agent.covariance_m2.topLeftCorner<2, 2>() = step.position_covariance;
   out.agents.push_back(agent);
   out.associations = static_cast<int>(step.associations.size());
+  out.expected = step.visible_count;
   out.relocalized = step.relocalized;
   out.constrained = step.constrained;
   out.rejected_update = step.update.rejection == estimation::UpdateRejection::kNotPositiveDefinite;

@@ -1,0 +1,17 @@
+// SPDX-License-Identifier: MIT
+// One simulated run as a recording (anchors, ranges, truth), as `mirage simulate` writes it:
+// exactly the range sets the runner's estimator sees in that run, so that replaying the files
+// gives the same track.
+#pragma once
+
+#include "mirage/pipeline/experiment.h"
+#include "mirage/pipeline/recording.h"
+
+namespace mirage::pipeline {
+
+/// Run `run` of trajectory `trajectory` of a range-set simulation (CIRs with extraction,
+/// range-level or ranging). Epochs without any range of any anchor cannot be written to
+/// ranges.csv and are left out; the truth keeps every epoch.
+Recording SimulateRecording(const Experiment& experiment, int trajectory, int run);
+
+}  // namespace mirage::pipeline

@@ -1,0 +1,89 @@
+// SPDX-License-Identifier: MIT
+#include "mirage/methods/registry.h"
+
+#include "mirage/methods/coop/coop_estimator.h"
+#include "mirage/methods/mint/mint_estimator.h"
+#include "mirage/methods/range_ekf/range_ekf.h"
+#include "mirage/methods/slam/slam_estimator.h"
+
+namespace mirage::methods {
+namespace {
+
+// The type-safe parts of an entry for options struct Options and estimator Est.
+template <typename Options, typename Est>
+MethodInfo Entry(std::string name, std::string summary, std::string source, const core::OptionsDescriptor<Options>& descriptor) {
+  MethodInfo info;
+  info.name = std::move(name);
+  info.summary = std::move(summary);
+  info.source = std::move(source);
+  info.descriptor = &descriptor;
+  info.make_options = [] { return std::static_pointer_cast<void>(std::make_shared<Options>()); };
+  info.create = [](const void* options, const World& world) -> std::unique_ptr<Estimator> {
+    return std::make_unique<Est>(*static_cast<const Options*>(options), world);
+  };
+  return info;
+}
+
+std::vector<MethodInfo> BuiltIn() {
+  std::vector<MethodInfo> out;
+  {
+    auto m = Entry<mint::MintOptions, mint::MintEstimator>(
+        "mint", "multipath-assisted tracking with a known floor plan: ranges to virtual anchors in an EKF",
+        "Lafer 2014 ch. 3", mint::MintOptionsDescriptor());
+    m.start_sigma_m = [](const void* o) { return static_cast<const mint::MintOptions*>(o)->initial_position_sigma_m; };
+    out.push_back(std::move(m));
+  }
+  {
+    auto m = Entry<slam::SlamOptions, slam::SlamEstimator>(
+        "slam", "multipath SLAM: virtual anchors in the EKF state, discovered from unexplained ranges",
+        "Leitinger et al.; Lafer 2014 ch. 4", slam::SlamOptionsDescriptor());
+    m.start_sigma_m = [](const void* o) { return static_cast<const slam::SlamOptions*>(o)->initial_position_sigma_m; };
+    out.push_back(std::move(m));
+  }
+  {
+    auto m = Entry<coop::CoopOptions, coop::CoopEstimator>(
+        "coop", "anchorless cooperative tracking of several agents with the floor plan's walls in the state",
+        "Kulmer et al., Sec. III-IV", coop::CoopOptionsDescriptor());
+    m.input = MethodInput::kLinkCirs;
+    m.joint = true;
+    m.links = [](const void* o, const World& world) { return coop::CoopLinks(*static_cast<const coop::CoopOptions*>(o), world); };
+    m.start_sigma_m = [](const void* o) { return static_cast<const coop::CoopOptions*>(o)->agent_sigma_m; };
+    m.check = [](const void* o, const World& world) -> std::vector<std::string> {
+      if (static_cast<const coop::CoopOptions*>(o)->anchor_links && world.anchors.empty()) {
+        return {"anchor_links: the anchor links need an anchor: list one under anchors"};
+      }
+      return {};
+    };
+    out.push_back(std::move(m));
+  }
+  {
+    auto m = Entry<range_ekf::RangeEkfOptions, range_ekf::RangeEkf>(
+        "range_ekf", "a 3-D range EKF (or planar at a known height) with a chi-square gate: the plain baseline",
+        "textbook EKF; ROADMAP item 16 builds on it", range_ekf::RangeEkfOptionsDescriptor());
+    m.start_sigma_m = [](const void* o) { return static_cast<const range_ekf::RangeEkfOptions*>(o)->initial_position_sigma_m; };
+    out.push_back(std::move(m));
+  }
+  return out;
+}
+
+}  // namespace
+
+const std::vector<MethodInfo>& Methods() {
+  static const std::vector<MethodInfo> methods = BuiltIn();
+  return methods;
+}
+
+const MethodInfo* FindMethod(std::string_view name) {
+  for (const auto& m : Methods()) {
+    if (m.name == name) return &m;
+  }
+  return nullptr;
+}
+
+std::string MethodNames() {
+  std::string out;
+  for (const auto& m : Methods()) out += (out.empty() ? "" : ", ") + m.name;
+  return out;
+}
+
+}  // namespace mirage::methods
