@@ -2,7 +2,10 @@
 #include "mirage/geometry/trajectory.h"
 
 #include <cassert>
+#include <algorithm>
 #include <cmath>
+
+#include <Eigen/Geometry>
 
 namespace mirage::geometry {
 
@@ -12,9 +15,106 @@ double PolylineLength(std::span<const Vec2> waypoints_m) {
   return length_m;
 }
 
+namespace {
+
+// One piece of a path with rounded corners: a straight leg, or an arc about `center`.
+struct Piece {
+  bool arc = false;
+  Vec2 start = Vec2::Zero();  // straight: start point; arc: start point on the circle
+  Vec2 direction = Vec2::Zero();  // straight: unit direction
+  Vec2 center = Vec2::Zero();
+  double radius_m = 0.0;
+  double turn = 0.0;  // arc: +1 turning left, -1 right
+  double length_m = 0.0;
+};
+
+double Cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+// The polyline with each corner replaced by an arc of radius r tangent to both legs; an arc's
+// tangent length r tan(theta / 2) is limited to half of the shorter adjoining leg.
+std::vector<Piece> RoundCorners(std::span<const Vec2> points, double r) {
+  std::vector<Vec2> p;
+  for (const Vec2& q : points) {
+    if (p.empty() || (q - p.back()).norm() > 0.0) p.push_back(q);
+  }
+  std::vector<Piece> pieces;
+  Vec2 from = p.front();
+  for (std::size_t i = 1; i < p.size(); ++i) {
+    const Vec2 in = (p[i] - p[i - 1]).normalized();
+    Piece line;
+    line.start = from;
+    line.direction = in;
+    if (i + 1 == p.size()) {
+      line.length_m = (p[i] - from).norm();
+      pieces.push_back(line);
+      break;
+    }
+    const Vec2 out = (p[i + 1] - p[i]).normalized();
+    const double theta = std::acos(std::clamp(in.dot(out), -1.0, 1.0));  // turning angle
+    const double room_m = 0.5 * std::min((p[i] - p[i - 1]).norm(), (p[i + 1] - p[i]).norm());
+    // A straight continuation needs no arc; a reversal (theta = pi) cannot hold one: turn in place.
+    const bool arc_fits = theta > 1e-9 && theta < std::acos(-1.0) - 1e-6;
+    double tangent_m = arc_fits ? r * std::tan(0.5 * theta) : 0.0;
+    const double radius_m = tangent_m > room_m ? room_m / std::tan(0.5 * theta) : r;
+    tangent_m = std::min(tangent_m, room_m);
+    line.length_m = std::max((p[i] - from).norm() - tangent_m, 0.0);
+    pieces.push_back(line);
+    if (tangent_m > 0.0) {
+      Piece arc;
+      arc.arc = true;
+      arc.start = p[i] - tangent_m * in;
+      arc.turn = Cross(in, out) > 0.0 ? 1.0 : -1.0;
+      arc.center = arc.start + arc.turn * radius_m * Vec2(-in.y(), in.x());
+      arc.radius_m = radius_m;
+      arc.length_m = radius_m * theta;
+      arc.direction = in;
+      pieces.push_back(arc);
+    }
+    from = p[i] + tangent_m * out;
+  }
+  return pieces;
+}
+
+std::vector<TrajectorySample> SampleRounded(std::span<const Vec2> waypoints_m, double speed_mps, double dt_s,
+                                            const Vec2& offset_m, double turn_radius_m) {
+  const std::vector<Piece> pieces = RoundCorners(waypoints_m, turn_radius_m);
+  double total_m = 0.0;
+  for (const auto& piece : pieces) total_m += piece.length_m;
+  const double step_m = speed_mps * dt_s;
+  const auto steps = static_cast<std::size_t>(std::floor(total_m / step_m + 1e-9)) + 1;
+  std::vector<TrajectorySample> samples;
+  std::size_t k = 0;
+  double piece_start_m = 0.0;
+  for (std::size_t n = 0; n < steps; ++n) {
+    const double s_m = std::min(static_cast<double>(n) * step_m, total_m);
+    while (k + 1 < pieces.size() && s_m > piece_start_m + pieces[k].length_m) piece_start_m += pieces[k++].length_m;
+    const Piece& piece = pieces[k];
+    const double along_m = s_m - piece_start_m;
+    TrajectorySample sample;
+    sample.t_s = static_cast<double>(n) * dt_s;
+    if (!piece.arc) {
+      sample.position_m = piece.start + along_m * piece.direction + offset_m;
+      sample.velocity_mps = speed_mps * piece.direction;
+    } else {
+      // Rotate the start point about the centre by the angle walked.
+      const double angle = piece.turn * along_m / piece.radius_m;
+      const Eigen::Rotation2Dd rotation(angle);
+      const Vec2 radial = rotation * (piece.start - piece.center);
+      const Vec2 tangent = rotation * piece.direction;
+      sample.position_m = piece.center + radial + offset_m;
+      sample.velocity_mps = speed_mps * tangent;
+    }
+    samples.push_back(sample);
+  }
+  return samples;
+}
+
+}  // namespace
+
 std::vector<TrajectorySample> SampleTrajectory(std::span<const Vec2> waypoints_m, double speed_mps, double dt_s,
-                                               const Vec2& offset_m) {
-  assert(waypoints_m.size() >= 2 && speed_mps > 0.0 && dt_s > 0.0);
+                                               const Vec2& offset_m, double turn_radius_m) {
+  assert(waypoints_m.size() >= 2 && speed_mps > 0.0 && dt_s > 0.0 && turn_radius_m >= 0.0);
+  if (turn_radius_m > 0.0) return SampleRounded(waypoints_m, speed_mps, dt_s, offset_m, turn_radius_m);
   const double total_m = PolylineLength(waypoints_m);
   const double step_m = speed_mps * dt_s;
   // Small slack so that a trajectory whose length is a multiple of the step keeps its end point.

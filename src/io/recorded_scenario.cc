@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "mirage/io/recorded_scenario.h"
 
+#include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
 
 #include "mirage/io/output_file.h"
@@ -29,8 +30,11 @@ void WriteRecordedScenario(const Scenario& scenario, int trajectory, const std::
   measurements["anchors"] = "anchors.csv";
   measurements["ranges"] = "ranges.csv";
   measurements["truth"] = "truth.csv";
-  if (e.measurement_model == pipeline::MeasurementModel::kRanging) measurements["range_sigma_m"] = e.ranging.range_sigma_m;
-  measurements["speed_mps"] = e.trajectories[static_cast<std::size_t>(trajectory)].speed_mps;
+  // The shortest text that reads back as the same double ("0.1", not "0.10000000000000001").
+  if (e.measurement_model == pipeline::MeasurementModel::kRanging) {
+    measurements["range_sigma_m"] = fmt::format("{}", e.ranging.range_sigma_m);
+  }
+  measurements["speed_mps"] = fmt::format("{}", e.trajectories[static_cast<std::size_t>(trajectory)].speed_mps);
   out["measurements"] = measurements;
 
   YAML::Emitter emitter;
@@ -39,6 +43,8 @@ void WriteRecordedScenario(const Scenario& scenario, int trajectory, const std::
   const std::string path = dir + "/scenario.yaml";
   OutputFile output(path);
   output.stream() << "# Written by `mirage simulate " << scenario.file << "`: runs the recording in this directory.\n"
+                  << "# Without the `truth:` line the estimator starts itself from the first epochs (no error "
+                     "figures).\n"
                   << emitter.c_str() << "\n";
   output.Commit();
 }

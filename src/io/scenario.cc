@@ -133,6 +133,7 @@ void ReadTrajectories(YamlMap& root, bool recorded, Experiment& e) {
     spec.dt_s = t.Number("dt_s", spec.dt_s);
     if (!(spec.dt_s > 0.0)) t.Fail("dt_s", FormatValue(spec.dt_s) + " s must be > 0 s (time steps go forward)");
     spec.height_m = t.NumberInRange("height_m", spec.height_m, -kHuge, kHuge, "m");
+    spec.turn_radius_m = t.NumberInRange("turn_radius_m", spec.turn_radius_m, 0.0, 100.0, "m");
     if (!IsPlainName(spec.name)) t.Fail("name", "must not contain commas, quotes or line breaks (it goes into CSV files)");
     for (const auto& other : e.trajectories) {
       if (other.name == spec.name) t.Fail("name", "duplicate trajectory name '" + spec.name + "' (names label the CSV rows)");
@@ -141,6 +142,10 @@ void ReadTrajectories(YamlMap& root, bool recorded, Experiment& e) {
     if (length_m < spec.speed_mps * spec.dt_s) t.Fail("waypoints_m", "the trajectory is shorter than one step (speed_mps * dt_s)");
     if (length_m / (spec.speed_mps * spec.dt_s) > kMaxStepsPerTrajectory) {
       t.Fail("speed_mps", fmt::format("speed_mps * dt_s gives more than {:g} steps for this trajectory", kMaxStepsPerTrajectory));
+    }
+    if (spec.turn_radius_m > 0.0 &&
+        geometry::SampleTrajectory(spec.waypoints_m, spec.speed_mps, spec.dt_s, Vec2::Zero(), spec.turn_radius_m).size() < 2) {
+      t.Fail("turn_radius_m", "with its corners rounded the trajectory is shorter than one step (speed_mps * dt_s)");
     }
     // Every run walks the trajectory shifted by its grid offset: check the grid's corners too.
     if (!e.plan.walls().empty()) {

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "mirage/geometry/trajectory.h"
 
+#include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -111,6 +113,66 @@ TEST(SampleTrajectory, MatchesTheThesisStepOf5cmAt0Point1s) {
   ASSERT_EQ(samples.size(), 61u);
   EXPECT_NEAR((samples[21].position_m - Vec2(1, 0.05)).norm(), 0.0, 1e-12);
   EXPECT_NEAR((samples[60].position_m - Vec2(0, 1)).norm(), 0.0, 1e-9);
+}
+
+TEST(SampleTrajectory, WithZeroTurnRadiusTurnsInstantlyAsBefore) {
+  const auto instant = SampleTrajectory(kUShape, 0.5, 0.1);
+  const auto zero = SampleTrajectory(kUShape, 0.5, 0.1, Vec2::Zero(), 0.0);
+  ASSERT_EQ(instant.size(), zero.size());
+  for (std::size_t n = 0; n < zero.size(); ++n) EXPECT_EQ(instant[n].position_m, zero[n].position_m);
+}
+
+TEST(SampleTrajectory, RoundedCornersKeepTheSpeedAndTurnWithLateralAccelerationSpeedSquaredOverRadius) {
+  // An L of 4 m legs with a 0.5 m turn radius: steps of 5 cm, every step walks 5 cm of path, and
+  // on the arc the velocity turns by v dt / r per step, i.e. |dv/dt| = v^2 / r.
+  const std::vector<Vec2> l_shape{Vec2(0, 0), Vec2(4, 0), Vec2(4, 4)};
+  const double speed_mps = 0.5, dt_s = 0.1, radius_m = 0.5;
+  const auto samples = SampleTrajectory(l_shape, speed_mps, dt_s, Vec2::Zero(), radius_m);
+
+  // Path length: two legs minus two tangent lengths r plus the quarter arc pi r / 2.
+  const double length_m = 8.0 - 2.0 * radius_m + 0.5 * std::acos(-1.0) * radius_m;
+  ASSERT_EQ(samples.size(), static_cast<std::size_t>(std::floor(length_m / (speed_mps * dt_s))) + 1);
+  double max_accel_mps2 = 0.0;
+  for (std::size_t n = 1; n < samples.size(); ++n) {
+    EXPECT_NEAR(samples[n].velocity_mps.norm(), speed_mps, 1e-12);
+    // A chord of the arc is shorter than the arc walked; never longer than the step.
+    const double chord_m = (samples[n].position_m - samples[n - 1].position_m).norm();
+    EXPECT_LE(chord_m, speed_mps * dt_s + 1e-12);
+    EXPECT_GT(chord_m, speed_mps * dt_s * 0.99);
+    max_accel_mps2 = std::max(max_accel_mps2, (samples[n].velocity_mps - samples[n - 1].velocity_mps).norm() / dt_s);
+  }
+  EXPECT_NEAR(max_accel_mps2, speed_mps * speed_mps / radius_m, 0.01);
+  // The corner itself is cut: the closest sample stays r (sqrt(2) - 1) away from (4, 0).
+  double closest_m = 1e9;
+  for (const auto& s : samples) closest_m = std::min(closest_m, (s.position_m - Vec2(4, 0)).norm());
+  EXPECT_NEAR(closest_m, radius_m * (std::sqrt(2.0) - 1.0), 0.01);
+  EXPECT_TRUE(samples.front().position_m.isApprox(Vec2(0, 0), kTol));
+  EXPECT_LT((samples.back().position_m - Vec2(4, 4)).norm(), speed_mps * dt_s);
+}
+
+TEST(SampleTrajectory, ShrinksTheArcWhereALegIsTooShortToHoldIt) {
+  // The U's 1 m legs hold a tangent length of at most 0.5 m: a 2 m radius shrinks to 0.5 m,
+  // and the path stays continuous (no step longer than speed * dt).
+  const auto samples = SampleTrajectory(kUShape, 0.5, 0.1, Vec2::Zero(), 2.0);
+  for (std::size_t n = 1; n < samples.size(); ++n) {
+    EXPECT_LE((samples[n].position_m - samples[n - 1].position_m).norm(), 0.05 + 1e-12);
+  }
+  double max_accel_mps2 = 0.0;
+  for (std::size_t n = 1; n < samples.size(); ++n) {
+    max_accel_mps2 = std::max(max_accel_mps2, (samples[n].velocity_mps - samples[n - 1].velocity_mps).norm() / 0.1);
+  }
+  EXPECT_NEAR(max_accel_mps2, 0.5 * 0.5 / 0.5, 0.01);
+}
+
+TEST(SampleTrajectory, TurnsInPlaceAtAReversalEvenWithATurnRadius) {
+  // Out and back: no arc fits a 180-degree turn, so the walk reverses at (2, 0) without a jump.
+  const std::vector<Vec2> back{Vec2(0, 0), Vec2(2, 0), Vec2(0, 0)};
+  const auto samples = SampleTrajectory(back, 0.5, 0.1, Vec2::Zero(), 0.5);
+  ASSERT_EQ(samples.size(), 81u);
+  for (std::size_t n = 1; n < samples.size(); ++n) {
+    EXPECT_LE((samples[n].position_m - samples[n - 1].position_m).norm(), 0.05 + 1e-12);
+  }
+  EXPECT_TRUE(samples[40].position_m.isApprox(Vec2(2, 0), 1e-9));
 }
 
 }  // namespace

@@ -36,6 +36,8 @@ struct TrajectorySpec {
   double speed_mps = 0.5;         ///< walking speed (m/s), > 0; 5 cm per 0.1 s step (Lafer Sec. 3.7)
   double dt_s = 0.1;              ///< time step (s), > 0 (Lafer Tab. 3.1)
   double height_m = 0.0;          ///< the agent's height z (m)
+  /// Corners turned along arcs of this radius (m), >= 0; 0 turns instantly at the waypoints.
+  double turn_radius_m = 0.0;
 };
 
 /// Start offsets of the Monte-Carlo runs: run i is shifted by grid point i mod (nx * ny), the

@@ -17,7 +17,11 @@ const core::OptionsDescriptor<ConstantVelocityOptions>& ConstantVelocityOptionsD
               .unit = "m/s^2",
               .range = core::ValueRange::Positive(),
               .doc = "Standard deviation of the white acceleration of the constant-velocity model. 1 m/s^2 is a "
-                     "walking person's typical acceleration; 2 m/s^2 diverges more often in the seminar room."});
+                     "walking person's typical acceleration. Derived: a walker's velocity changes by about its speed "
+                     "within one gait cycle of about 0.5 s (a turn, a stop), so sigma_a = speed / 0.5 s.",
+              .derived = core::DerivedDefault{.formula = "speed_mps / 0.5 s",
+                                              .needs = {core::PhysicalKey::kSpeed},
+                                              .compute = [](const core::PhysicalKeys& k) { return *k.speed_mps / 0.5; }}});
     return d;
   }();
   return descriptor;

@@ -6,7 +6,10 @@
 #include <limits>
 #include <stdexcept>
 
+#include <Eigen/Cholesky>
+
 #include "mirage/estimation/ekf_update.h"
+#include "mirage/estimation/gates/chi2.h"
 #include "mirage/estimation/gates/chi2_gate.h"
 #include "mirage/estimation/init/position_fix.h"
 #include "mirage/estimation/meas/range_to_point.h"
@@ -35,7 +38,12 @@ const core::OptionsDescriptor<RangeEkfOptions>& RangeEkfOptionsDescriptor() {
     d.Number(&O::range_sigma_m, {.key = "range_sigma_m",
                                  .unit = "m",
                                  .range = ValueRange::Above(0.0),
-                                 .doc = "Range standard deviation. 0.1 m, typical of UWB two-way ranging."});
+                                 .doc = "Range standard deviation. 0.1 m, typical of UWB two-way ranging; derived "
+                                        "from the scenario's range noise.",
+                                 .derived = core::DerivedDefault{
+                                     .formula = "range_sigma_m",
+                                     .needs = {core::PhysicalKey::kRangeSigma},
+                                     .compute = [](const core::PhysicalKeys& k) { return *k.range_sigma_m; }}});
     d.Number(&O::gate_chi2, {.key = "gate_chi2",
                              .range = ValueRange::AtLeast(0.0),
                              .doc = "Chi-square gate on one range's innovation (1 degree of freedom); 0 = off. 9 = 3 "
@@ -49,7 +57,12 @@ const core::OptionsDescriptor<RangeEkfOptions>& RangeEkfOptionsDescriptor() {
     d.Number(&O::initial_velocity_sigma_mps, {.key = "initial_velocity_sigma_mps",
                                               .unit = "m/s",
                                               .range = ValueRange::Above(0.0),
-                                              .doc = "Velocity standard deviation at the start, at rest. 1 m/s."});
+                                              .doc = "Velocity standard deviation at the start, at rest. 1 m/s; "
+                                                     "derived: the walker's speed in an unknown direction.",
+                                              .derived = core::DerivedDefault{
+                                                  .formula = "speed_mps",
+                                                  .needs = {core::PhysicalKey::kSpeed},
+                                                  .compute = [](const core::PhysicalKeys& k) { return *k.speed_mps; }}});
     d.Section(&O::motion, {.key = "motion", .doc = "Constant-velocity motion model of the agent."},
               estimation::ConstantVelocityOptionsDescriptor());
     return d;
@@ -88,10 +101,10 @@ void RangeEkf::Initialize(const Prior& prior) {
   Start(prior.t_s, prior.positions_m.front(), sp * sp * Eigen::Matrix3d::Identity());
 }
 
-bool RangeEkf::InitializeFromEpoch(const core::Epoch& epoch) {
+std::optional<estimation::PositionFix> RangeEkf::Fix(std::span<const core::RangeSet> sets) const {
   std::vector<Vec3> anchors_m;
   std::vector<double> ranges_m;
-  for (const auto& set : epoch.range_sets) {
+  for (const auto& set : sets) {
     if (set.ranges.empty()) continue;
     // The earliest range is the line of sight when it is not blocked.
     const auto earliest = std::min_element(set.ranges.begin(), set.ranges.end(),
@@ -99,11 +112,39 @@ bool RangeEkf::InitializeFromEpoch(const core::Epoch& epoch) {
     anchors_m.push_back(world_.anchors.at(static_cast<std::size_t>(set.anchor_index)).position_m);
     ranges_m.push_back(earliest->range_m);
   }
-  const auto fix = estimation::FixPosition(anchors_m, ranges_m, planar() ? std::optional(AgentHeight()) : std::nullopt,
-                                           options_.range_sigma_m);
+  return estimation::FixPosition(anchors_m, ranges_m, planar() ? std::optional(AgentHeight()) : std::nullopt,
+                                 options_.range_sigma_m);
+}
+
+bool RangeEkf::InitializeFromEpoch(const core::Epoch& epoch) {
+  const auto fix = Fix(epoch.range_sets);
   if (!fix) return false;
   Start(epoch.t_s, fix->position_m, fix->covariance_m2);
   return true;
+}
+
+bool RangeEkf::Reacquire(std::span<const core::RangeSet> sets) {
+  if (options_.gate_chi2 == 0.0) return false;  // nothing is ever gated out
+  const auto fix = Fix(sets);
+  // The fix counts only when its ranges agree with each other: its residuals inside the gate.
+  const double variance_m2 = options_.range_sigma_m * options_.range_sigma_m;
+  if (!fix || !(fix->rms_m * fix->rms_m <= options_.gate_chi2 * variance_m2)) return false;
+  // The track is lost when the prediction lies outside the fix's confidence region, combined
+  // with its own, at the gate's tail probability carried to the position's dimension.
+  const int d = planar() ? 2 : 3;
+  const estimation::BlockKey position(PositionType(planar()), 0);
+  const Eigen::VectorXd difference_m = state_.Mean(position) - fix->position_m.head(d);
+  const Eigen::MatrixXd combined_m2 = state_.Covariance(position) + fix->covariance_m2.topLeftCorner(d, d);
+  const double distance2 = difference_m.dot(combined_m2.ldlt().solve(difference_m));
+  if (!(distance2 > estimation::Chi2ThresholdLike1Dof(options_.gate_chi2, d))) return false;
+  Start(sets.front().t_s, fix->position_m, fix->covariance_m2);
+  return true;
+}
+
+std::optional<estimation::MeasurementRow> RangeEkf::AnchorRow(const estimation::State& state, int anchor_index) const {
+  const estimation::Block position = state.layout().At(estimation::BlockKey(PositionType(planar()), 0));
+  return estimation::RangeToPointRow(state, position, world_.anchors.at(static_cast<std::size_t>(anchor_index)).position_m,
+                                     AgentHeight(), options_.range_sigma_m * options_.range_sigma_m);
 }
 
 AgentEstimate RangeEkf::Estimate() const {
@@ -118,8 +159,6 @@ AgentEstimate RangeEkf::Estimate() const {
 
 StepOutput RangeEkf::Process(const core::Epoch& epoch) {
   StepOutput out;
-  const estimation::Block position = state_.layout().At(estimation::BlockKey(PositionType(planar()), 0));
-  const double variance_m2 = options_.range_sigma_m * options_.range_sigma_m;
   // Event-driven: the range sets are in time order; those with one time stamp update together.
   std::size_t next = 0;
   while (next < epoch.range_sets.size()) {
@@ -127,10 +166,11 @@ StepOutput RangeEkf::Process(const core::Epoch& epoch) {
     estimation::Propagate(state_, std::max(t_s, state_.t_s()), {&motion_});
     std::vector<estimation::MeasurementRow> rows;
     std::vector<double> innovations;
+    const std::size_t first = next;
+    int gated_out = 0;
     for (; next < epoch.range_sets.size() && epoch.range_sets[next].t_s == t_s; ++next) {
       const core::RangeSet& set = epoch.range_sets[next];
-      const Vec3& anchor_m = world_.anchors.at(static_cast<std::size_t>(set.anchor_index)).position_m;
-      const auto row = estimation::RangeToPointRow(state_, position, anchor_m, AgentHeight(), variance_m2);
+      const auto row = AnchorRow(state_, set.anchor_index);
       if (!row) continue;
       // The anchor's range nearest to the prediction in innovation variances, if inside the gate.
       const double s_m2 = estimation::InnovationVariance(state_, *row);
@@ -143,9 +183,18 @@ StepOutput RangeEkf::Process(const core::Epoch& epoch) {
           best_nu = nu;
         }
       }
-      if (!std::isfinite(best_nis) || !estimation::InsideChi2Gate(best_nu, s_m2, options_.gate_chi2)) continue;
+      if (!std::isfinite(best_nis) || !estimation::InsideChi2Gate(best_nu, s_m2, options_.gate_chi2)) {
+        ++gated_out;
+        continue;
+      }
       rows.push_back(*row);
       innovations.push_back(best_nu);
+    }
+    // A range outside the gate is either a bad range or a sign that the track is lost; the
+    // epoch's own fix tells which.
+    if (gated_out > 0 && Reacquire(std::span(epoch.range_sets).subspan(first, next - first))) {
+      out.relocalized = true;
+      continue;
     }
     if (!rows.empty()) {
       const auto update = estimation::Update(state_, rows, innovations);
@@ -166,7 +215,6 @@ std::vector<std::vector<double>> RangeEkf::PosteriorBound(const BoundInput& trut
   model.Initialize({truth.t_s.front(), {truth.positions_m.front().front()}});
   estimation::State state = model.state_;
   const estimation::Block position = state.layout().At(estimation::BlockKey(PositionType(planar()), 0));
-  const double variance_m2 = options_.range_sigma_m * options_.range_sigma_m;
   std::vector<std::vector<double>> bound;
   for (std::size_t k = 0; k < truth.positions_m.size(); ++k) {
     if (k > 0) {
@@ -176,10 +224,8 @@ std::vector<std::vector<double>> RangeEkf::PosteriorBound(const BoundInput& trut
       at_truth = truth.positions_m[k].front().head(d);
       state.SetMean(position.key, at_truth);
       std::vector<estimation::MeasurementRow> rows;
-      for (const auto& anchor : world_.anchors) {
-        if (auto row = estimation::RangeToPointRow(state, position, anchor.position_m, AgentHeight(), variance_m2)) {
-          rows.push_back(*row);
-        }
+      for (std::size_t i = 0; i < world_.anchors.size(); ++i) {
+        if (auto row = AnchorRow(state, static_cast<int>(i))) rows.push_back(*row);
       }
       const std::vector<double> zero(rows.size(), 0.0);
       estimation::Update(state, rows, zero);

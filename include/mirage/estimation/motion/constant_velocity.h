@@ -18,9 +18,11 @@ namespace mirage::estimation {
 /// Parameters of the constant-velocity model.
 struct ConstantVelocityOptions {
   /// Standard deviation of the acceleration sigma_a (m/s^2), in [1e-9, 1e9]. 1 m/s^2, a walking
-  /// person's typical acceleration; a 90 degree corner at 0.5 m/s (a 0.7 m/s change within one
-  /// 0.1 s step) is a 7-sigma event that the measurements, not the model, have to absorb. In the
-  /// seminar room 2 m/s^2 diverges more often (docs/methods/mint.md, ablations).
+  /// person's typical acceleration. A scenario that states the walker's speed derives it as
+  /// speed / 0.5 s: the velocity changes by about the speed within one gait cycle (a turn, a
+  /// stop), which gives the same 1 m/s^2 at the seminar room's 0.5 m/s. A 90 degree corner turned
+  /// instantly (a 0.7 m/s change within one 0.1 s step at 0.5 m/s) is still a 7-sigma event that
+  /// the measurements, not the model, have to absorb (docs/methods/mint.md, ablations).
   double accel_sigma_mps2 = 1.0;
 };
 

@@ -5,12 +5,19 @@
 // anchor and epoch, the nearest to the prediction in normalised distance among the anchor's
 // ranges, inside a chi-square gate on the innovation variance. Event-driven: the filter
 // propagates to each record's time before its update. It uses no floor plan and no multipath.
+// When the gate rejects a range, the epoch's least-squares fix decides between a bad range and a
+// lost track: if the fix's residuals pass the same gate and the prediction lies outside the fix's
+// confidence region (the gate's tail probability in 2 or 3 dimensions), it restarts at the fix.
 #pragma once
 
+#include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
 #include "mirage/core/options_descriptor.h"
+#include "mirage/estimation/init/position_fix.h"
+#include "mirage/estimation/measurement_row.h"
 #include "mirage/estimation/motion/constant_velocity.h"
 #include "mirage/estimation/state.h"
 #include "mirage/methods/estimator.h"
@@ -58,10 +65,21 @@ class RangeEkf final : public Estimator {
   /// range_sigma_m (the posterior Cramer-Rao bound of its model, Tichavsky et al. 1998).
   [[nodiscard]] std::vector<std::vector<double>> PosteriorBound(const BoundInput& truth) const override;
 
+  /// The filter's state: position then velocity of agent 0, in 3-D or in the plane.
+  [[nodiscard]] const estimation::State& state() const { return state_; }
+  /// The linearised range to anchor anchor_index at `state` (empty when the agent sits on it).
+  [[nodiscard]] std::optional<estimation::MeasurementRow> AnchorRow(const estimation::State& state,
+                                                                    int anchor_index) const;
+
  private:
   [[nodiscard]] bool planar() const { return options_.mode == "planar"; }
   [[nodiscard]] double AgentHeight() const;
   void Start(double t_s, const Vec3& position_m, const Eigen::Matrix3d& position_covariance_m2);
+  /// The least-squares fix of the sets' earliest ranges, one per anchor.
+  [[nodiscard]] std::optional<estimation::PositionFix> Fix(std::span<const core::RangeSet> sets) const;
+  /// Restarts at the fix of the sets when their ranges agree with each other (RMS residual inside
+  /// the gate) and the prediction lies outside the fix's confidence region: the track is lost.
+  bool Reacquire(std::span<const core::RangeSet> sets);
   [[nodiscard]] AgentEstimate Estimate() const;
 
   RangeEkfOptions options_;
