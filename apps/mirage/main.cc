@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // The mirage command-line tool.
 //   mirage run SCENARIO.yaml [--runs N] [--seed S] [--threads T] [--json FILE] [--csv DIR] [--plot FILE]
-//   mirage describe [METHOD] [--markdown]
+//   mirage describe [METHOD|SECTION] [--markdown]
 //   mirage simulate SCENARIO.yaml --out DIR [--seed S] [--trajectory NAME] [--run R]
 //   mirage --version
 // Exit codes: 0 success, 2 bad input or usage, 3 internal error.
@@ -22,6 +22,11 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include "mirage/channel/cir_synthesizer.h"
+#include "mirage/channel/range_level_simulator.h"
+#include "mirage/channel/ranging_simulator.h"
+#include "mirage/dsp/mpc_extractor.h"
+#include "mirage/eval/error_stats.h"
 #include "mirage/io/input_error.h"
 #include "mirage/io/options_describe.h"
 #include "mirage/io/output_file.h"
@@ -164,23 +169,57 @@ int Run(const RunArgs& args) {
   return 0;
 }
 
-// Every option of a method (or the list of methods): key, unit, default or the formula it is
-// derived from, valid range and meaning, from the method's options descriptor.
-int Describe(const std::string& method, bool markdown) {
-  if (method.empty()) {
-    std::cout << "methods (mirage describe METHOD lists its options):\n";
+// The scenario sections whose keys come from an options descriptor, by the name `mirage
+// describe` takes: the front end and the evaluation, next to the methods.
+struct DescribedSection {
+  const char* name;      // `mirage describe NAME`
+  const char* yaml_path;  // where its keys go in a scenario
+  const char* summary;
+  const mirage::core::OptionsDescriptorBase& descriptor;
+};
+
+std::vector<DescribedSection> DescribedSections() {
+  return {
+      {"channel", "channel", "the simulated UWB channel (measurements.model cir or ranges)",
+       mirage::channel::ChannelOptionsDescriptor()},
+      {"ranging", "measurements", "a ranging system's ranges (measurements.model ranging)",
+       mirage::channel::RangingOptionsDescriptor()},
+      {"ranges", "measurements", "range-level measurements with SINR-dependent noise (measurements.model ranges)",
+       mirage::channel::RangeLevelOptionsDescriptor()},
+      {"mpc", "mpc", "multipath-component extraction from CIRs", mirage::dsp::MpcExtractorOptionsDescriptor()},
+      {"divergence", "evaluation.divergence", "the rule that calls a run diverged", mirage::eval::DivergenceRuleDescriptor()},
+  };
+}
+
+// Every option of a method or a section (or the list of both): key, unit, default or the
+// formula it is derived from, valid range and meaning, from the options descriptor.
+int Describe(const std::string& name, bool markdown) {
+  if (name.empty()) {
+    std::cout << "methods (mirage describe METHOD lists its options under `method:`):\n";
     for (const auto& m : mirage::methods::Methods()) {
       std::cout << fmt::format("  {:<10} {} ({})\n", m.name, m.summary, m.source);
     }
+    std::cout << "scenario sections (mirage describe SECTION):\n";
+    for (const auto& s : DescribedSections()) {
+      std::cout << fmt::format("  {:<10} `{}`: {}\n", s.name, s.yaml_path, s.summary);
+    }
     return 0;
   }
-  const auto* info = mirage::methods::FindMethod(method);
-  if (info == nullptr) {
-    throw mirage::io::InputError("describe: unknown method '" + method + "' (available: " + mirage::methods::MethodNames() + ")");
+  if (const auto* info = mirage::methods::FindMethod(name)) {
+    std::cout << (markdown ? mirage::io::DescribeMarkdown(*info->descriptor, "method")
+                           : mirage::io::DescribeText(*info->descriptor, "method: {name: " + info->name + ", ...}"));
+    return 0;
   }
-  std::cout << (markdown ? mirage::io::DescribeMarkdown(*info->descriptor, "method")
-                         : mirage::io::DescribeText(*info->descriptor, "method: {name: " + info->name + ", ...}"));
-  return 0;
+  for (const auto& s : DescribedSections()) {
+    if (name != s.name) continue;
+    std::cout << (markdown ? mirage::io::DescribeMarkdown(s.descriptor, s.yaml_path)
+                           : mirage::io::DescribeText(s.descriptor, s.yaml_path));
+    return 0;
+  }
+  std::string sections;
+  for (const auto& s : DescribedSections()) sections += std::string(sections.empty() ? "" : ", ") + s.name;
+  throw mirage::io::InputError("describe: unknown method or section '" + name +
+                               "' (methods: " + mirage::methods::MethodNames() + "; sections: " + sections + ")");
 }
 
 // Writes one simulated run as recorded data (anchors.csv, ranges.csv, truth.csv) plus a
@@ -263,8 +302,9 @@ int main(int argc, char** argv) {
 
   std::string describe_method;
   bool describe_markdown = false;
-  auto* describe = app.add_subcommand("describe", "list the methods, or every option of one (unit, default, range)");
-  describe->add_option("method", describe_method, "method name");
+  auto* describe = app.add_subcommand(
+      "describe", "list the methods and scenario sections, or every option of one (unit, default, range)");
+  describe->add_option("name", describe_method, "a method or scenario section name");
   describe->add_flag("--markdown", describe_markdown, "print a Markdown table (the form of docs/scenario.md)");
 
   try {
