@@ -113,6 +113,8 @@ json RunHealthJson(const pipeline::Variant& variant, const pipeline::ExperimentR
             {"covariance_growth", h.covariance_growth},
             {"steps_outside_plan", h.steps_outside_plan},
             {"out_of_order_records", h.out_of_order_records},
+            {"started", h.started},
+            {"epochs_before_start", h.epochs_before_start},
             {"drifted", h.drifted},
             {"drift_reason", h.drift_reason}};
   if (grid) j["variant"] = variant.name;
@@ -204,9 +206,10 @@ std::string FormatResultTable(const Scenario& scenario, const pipeline::Experime
                      "runs", "steps", "rmse_m", "p50_m", "p90_m", "max_m", "diverged", "peb_m", "rmse/peb");
   const auto row = [&](const std::string& name, const GroupSummary& g) {
     const std::string label = name.size() > 28 ? name.substr(0, 25) + "..." : name;
-    if (!g.has_truth) {
+    if (!g.has_truth || g.steps == 0) {  // no truth, or no run started: no errors to show
+      const std::string diverged = g.has_truth ? std::to_string(g.diverged_runs) : "-";
       out += fmt::format("{:<28} {:>5} {:>7} {:>8} {:>8} {:>8} {:>8} {:>9} {:>9} {:>10}\n", label, g.runs, g.steps, "-",
-                         "-", "-", "-", "-", "-", "-");
+                         "-", "-", "-", diverged, "-", "-");
       return;
     }
     const std::string peb = g.bound_rms_m ? fmt::format("{:.4f}", *g.bound_rms_m) : "-";
@@ -258,12 +261,15 @@ std::string FormatResultTable(const Scenario& scenario, const pipeline::Experime
     if (!run.health.drifted) continue;
     if (++drifted <= 5) {
       const auto& groups = result.variants[static_cast<std::size_t>(run.variant)].groups;
-      out += fmt::format("warning: {}{} run {} drifted away: {}\n",
-                         grid ? scenario.variants[static_cast<std::size_t>(run.variant)].name + ", " : "",
-                         groups[static_cast<std::size_t>(run.group)], run.run, run.health.drift_reason);
+      out += fmt::format("warning: {}{} run {} {}{}\n", grid ? scenario.variants[static_cast<std::size_t>(run.variant)].name + ", " : "",
+                         groups[static_cast<std::size_t>(run.group)], run.run,
+                         run.health.started ? "drifted away: " : "", run.health.drift_reason);
     }
   }
-  if (drifted > 5) out += fmt::format("warning: {} runs drifted away in all (the JSON report's health block lists them)\n", drifted);
+  if (drifted > 5) {
+    out += fmt::format("warning: {} runs drifted away or never started in all (the JSON report's health block lists them)\n",
+                       drifted);
+  }
   double simulate_s = 0.0, estimate_s = 0.0;
   int steps = 0;
   for (const auto& s : summaries) {

@@ -281,6 +281,7 @@ Experiment ReadExperiment(YamlMap& root, const std::string& file, const methods:
   e.runs = root.Integer("runs", e.runs, 1, recorded ? 1 : kMaxRuns);
   e.threads = root.Integer("threads", e.threads, 0, kMaxThreads);
   e.perturb_initial_position = root.Boolean("perturb_initial_position", e.perturb_initial_position);
+  e.self_start = root.Boolean("self_start", e.self_start);
   {
     YamlMap grid = root.OptionalMap("run_grid");
     e.run_grid.nx = grid.Integer("nx", e.run_grid.nx, 1, 1000);

@@ -111,6 +111,7 @@ void FinishHealth(const geometry::FloorPlan& plan, const eval::DivergenceRule& r
   if (uncertain) reasons.push_back(fmt::format("position uncertainty above {:g} m at the end", rule.threshold_m));
   if (outside) reasons.push_back("estimate outside the floor plan at the end");
   if (h.steps > 0 && 2 * h.steps_without_association > h.steps) reasons.push_back("no measurement used at most epochs");
+  if (!h.started) reasons.push_back("never started: no epoch let the estimator start itself");
   h.drifted = !reasons.empty();
   for (std::size_t i = 0; i < reasons.size(); ++i) h.drift_reason += (i > 0 ? "; " : "") + reasons[i];
 }
@@ -143,7 +144,9 @@ RunRecord RunOne(const VariantContext& vc, int variant, int group, int run, cons
   // The start: the truth (possibly perturbed by the method's own start uncertainty), a given
   // point, or the estimator's own fix from the first epochs.
   bool started = false;
-  if (const auto truth = source->TrueStart(); truth && !(e.recording && e.start_m)) {
+  if (e.self_start) {
+    // Every start comes from the data.
+  } else if (const auto truth = source->TrueStart(); truth && !(e.recording && e.start_m)) {
     std::vector<Vec3> start = *truth;
     if (anchor_source != nullptr) {
       core::Rng& init = anchor_source->init_rng();
@@ -160,13 +163,16 @@ RunRecord RunOne(const VariantContext& vc, int variant, int group, int run, cons
 
   std::set<int> visible_channel_ids;  // map truth: channel VAs seen along the run
   const bool walls = !given.plan.walls().empty();
-  int step_index = -1;
+  int step_index = -1;   // epochs processed
+  int epoch_index = -1;  // epochs seen, those used to start included
   while (auto step = source->Next()) {
     record.simulate_s += step->simulate_s;
+    ++epoch_index;
     if (!started) {
       const auto t0 = Clock::now();
       started = estimator->InitializeFromEpoch(step->epoch);
       record.estimate_s += Seconds(Clock::now() - t0);
+      ++record.health.epochs_before_start;
       continue;  // the epoch that initialises is not processed again
     }
     ++step_index;
@@ -218,7 +224,7 @@ RunRecord RunOne(const VariantContext& vc, int variant, int group, int run, cons
       s.covariance_m2 = out.agents[a].covariance_m2;
       if (s.truth_m) s.error_m = EstimateError(out.agents[a], *s.truth_m);
       if (bound != nullptr) {
-        const auto k = static_cast<std::size_t>(step_index + 1);
+        const auto k = static_cast<std::size_t>(epoch_index + 1);
         if (k < bound->size() && a < (*bound)[k].size()) s.bound_m = (*bound)[k][a];
       } else {
         s.bound_m = snapshot;
@@ -265,7 +271,10 @@ RunRecord RunOne(const VariantContext& vc, int variant, int group, int run, cons
       if (s.error_m) errors.push_back(*s.error_m);
     }
     agent.diverged = !errors.empty() && errors.size() == agent.steps.size() && eval::IsDiverged(errors, e.divergence);
+    // No position at all is a failure too, when the truth could have judged one.
+    if (!started && source->TrueStart()) agent.diverged = true;
   }
+  record.health.started = started;
   record.map = estimator->Map();
   if (!record.map.empty() && vc.channel_vas.size() > 0 && (!e.recording || e.recording->has_truth())) {
     record.map_score = EvaluateMap(record.map, vc.channel_vas, visible_channel_ids, e.map_cutoff_m);

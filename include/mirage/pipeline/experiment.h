@@ -141,6 +141,9 @@ struct Experiment {
   /// Start at a draw from N(true start, sigma^2 I), sigma the method's MethodSpec::start_sigma_m
   /// (the thesis starts at the true start with that variance, Tab. 3.1), not at the true start.
   bool perturb_initial_position = false;
+  /// The estimator starts itself from the first epochs (Estimator::InitializeFromEpoch) even
+  /// when the truth or a start point is known: measures self-initialisation with error figures.
+  bool self_start = false;
 
   MethodSpec method;
 

@@ -71,8 +71,13 @@ struct RunHealth {
   double covariance_growth = 1.0;
   int steps_outside_plan = 0;   ///< epochs with an estimate outside the floor plan's walls
   int out_of_order_records = 0;  ///< records that arrived older than their epoch, dropped
-  /// The track drifted away (outside the floor plan at the end, uncertainty grown tenfold, or
-  /// more than half of the epochs without a measurement), and why.
+  /// The estimator started (from the truth, a start point, or itself), and after how many
+  /// epochs it started itself (those epochs have no estimate). A run that never started has no
+  /// track: it counts as drifted and, with truth, as diverged.
+  bool started = true;
+  int epochs_before_start = 0;
+  /// The track drifted away (outside the floor plan at the end, uncertainty above the divergence
+  /// threshold, or more than half of the epochs without a measurement) or never started, and why.
   bool drifted = false;
   std::string drift_reason;
 };

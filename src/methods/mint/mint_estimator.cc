@@ -22,10 +22,19 @@ double RangeSigmaAtUnitSinr(const World& world) {
 
 MintEstimator::MintEstimator(const MintOptions& options, const World& world)
     : world_(world),
+      search_(options.relocalization),
+      start_(world.physical.speed_mps),
       vas_(geometry::VirtualAnchorSet::Generate(PlanarAnchors(world_), world_.floor_plan, options.max_order)),
       tracker_(options, vas_, world_.floor_plan, RangeSigmaAtUnitSinr(world_)) {}
 
 void MintEstimator::Initialize(const Prior& prior) { tracker_.Initialize(prior.t_s, prior.positions_m.front().head<2>()); }
+
+bool MintEstimator::InitializeFromEpoch(const core::Epoch& epoch) {
+  const auto start_m = start_.Add(epoch.t_s, SearchFloorPlan(vas_, world_.floor_plan, epoch.range_sets, search_));
+  if (!start_m) return false;
+  tracker_.Initialize(epoch.t_s, *start_m);
+  return true;
+}
 
 StepOutput MintEstimator::Process(const core::Epoch& epoch) {
   const MintStepResult step = tracker_.Step(epoch.t_s, epoch.range_sets);

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "mirage/methods/mint/relocalization.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "mirage/geometry/visibility.h"
@@ -137,6 +138,70 @@ std::optional<Vec2> SearchPosition(const geometry::VirtualAnchorSet& vas, const 
   ScanGrid(vas, plan, coarse, options.search_step_m, options.search_step_m / kFineGridRatio, measurements, options, best);
   if (best.score.fraction() < options.found_score) return std::nullopt;
   return best.p_m;
+}
+
+std::optional<PlanFix> SearchFloorPlan(const geometry::VirtualAnchorSet& vas, const geometry::FloorPlan& plan,
+                                       std::span<const core::AnchorRanges> measurements,
+                                       const RelocalizationOptions& options) {
+  if (plan.walls().empty()) return std::nullopt;
+  const auto [lo, hi] = plan.Bounds();
+  const Vec2 center_m = 0.5 * (lo + hi);
+  const double radius_m = 0.5 * (hi - lo).maxCoeff();
+  // At most 401 x 401 coarse cells, whatever the building's size.
+  const double step_m = std::max(options.search_step_m, radius_m / 200.0);
+  const int n = static_cast<int>(std::ceil(radius_m / step_m));
+  // A range changes by at most the distance moved, so a cell's centre scored with the tolerance
+  // widened by half the cell's diagonal matches at least what any point of the cell matches: the
+  // agent's cell is among the best, however coarse the grid. The peaks are then refined with the
+  // true tolerance before they are compared.
+  RelocalizationOptions coarse = options;
+  coarse.match_tolerance_m += step_m / std::sqrt(2.0);
+  std::vector<Best> cells;
+  for (int ix = -n; ix <= n; ++ix) {
+    for (int iy = -n; iy <= n; ++iy) {
+      const Vec2 p = center_m + step_m * Vec2(ix, iy);
+      if (plan.InsideObstacle(p)) continue;
+      const MatchScore s = ScorePosition(vas, plan, p, measurements, coarse);
+      if (s.visible >= options.min_visible && s.matched > 0) cells.push_back({p, s, true});
+    }
+  }
+  std::stable_sort(cells.begin(), cells.end(), [](const Best& a, const Best& b) { return Better(a.score, b.score); });
+  constexpr std::size_t kPeaks = 8;
+  std::vector<Best> peaks;
+  for (const Best& cell : cells) {
+    if (peaks.size() == kPeaks) break;
+    const bool separate = std::all_of(peaks.begin(), peaks.end(), [&](const Best& peak) {
+      return (peak.p_m - cell.p_m).norm() > 2.0 * step_m;
+    });
+    if (!separate || !plan.Encloses(cell.p_m)) continue;
+    Best refined{cell.p_m, ScorePosition(vas, plan, cell.p_m, measurements, options), true};
+    ScanGrid(vas, plan, cell.p_m, step_m, step_m / kFineGridRatio, measurements, options, refined);
+    peaks.push_back(refined);
+  }
+  if (peaks.empty()) return std::nullopt;
+  std::stable_sort(peaks.begin(), peaks.end(), [](const Best& a, const Best& b) { return Better(a.score, b.score); });
+  const Best& best = peaks.front();
+  if (best.score.fraction() < options.found_score) return std::nullopt;
+  // Unique: no other peak explains the ranges as well (a symmetric room, or two anchors whose
+  // line-of-sight circles cross twice with no reflection to tell the crossings apart).
+  for (std::size_t k = 1; k < peaks.size(); ++k) {
+    if ((peaks[k].p_m - best.p_m).norm() > 2.0 * step_m && !Better(best.score, peaks[k].score)) return std::nullopt;
+  }
+  return PlanFix{best.p_m, step_m};
+}
+
+std::optional<Vec2> ConfirmedStart::Add(double t_s, const std::optional<PlanFix>& fix) {
+  if (!fix) {
+    pending_.reset();
+    return std::nullopt;
+  }
+  if (pending_) {
+    const auto& [t0_s, previous] = *pending_;
+    const double reach_m = 2.0 * std::max(previous.grid_step_m, fix->grid_step_m) + speed_mps_.value_or(0.0) * (t_s - t0_s);
+    if ((fix->position_m - previous.position_m).norm() <= reach_m) return fix->position_m;
+  }
+  pending_ = {t_s, *fix};
+  return std::nullopt;
 }
 
 }  // namespace mirage::methods::mint

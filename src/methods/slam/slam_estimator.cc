@@ -1,10 +1,12 @@
 // SPDX-License-Identifier: MIT
 #include "mirage/methods/slam/slam_estimator.h"
 
+#include <algorithm>
 #include <vector>
 
 #include <fmt/format.h>
 
+#include "mirage/estimation/init/position_fix.h"
 #include "mirage/methods/mint/mint_estimator.h"
 
 namespace mirage::methods::slam {
@@ -14,6 +16,15 @@ std::vector<Vec2> PlanarAnchors(const World& world) {
   std::vector<Vec2> out;
   for (const auto& a : world.anchors) out.push_back(a.position_m.head<2>());
   return out;
+}
+
+// MINT's relocalization score over the plan's LOS and first-order VAs, with the recovery's match
+// tolerance: the start search of a run without a start point.
+mint::RelocalizationOptions StartSearch(const SlamOptions& options) {
+  mint::RelocalizationOptions search;
+  search.max_order = 1;
+  search.match_tolerance_m = options.recovery.match_tolerance_m;
+  return search;
 }
 
 const char* OriginName(MapVaOrigin origin) {
@@ -29,10 +40,38 @@ const char* OriginName(MapVaOrigin origin) {
 
 SlamEstimator::SlamEstimator(const SlamOptions& options, const World& world)
     : world_(world),
+      range_sigma_m_(options.range_sigma_m),
+      search_(StartSearch(options)),
+      start_(world.physical.speed_mps),
+      search_vas_(geometry::VirtualAnchorSet::Generate(PlanarAnchors(world_), world_.floor_plan, 1)),
       known_vas_(geometry::VirtualAnchorSet::Generate(PlanarAnchors(world_), world_.floor_plan, options.prior_max_order)),
       tracker_(options, known_vas_, world_.floor_plan, mint::RangeSigmaAtUnitSinr(world_)) {}
 
 void SlamEstimator::Initialize(const Prior& prior) { tracker_.Initialize(prior.t_s, prior.positions_m.front().head<2>()); }
+
+bool SlamEstimator::InitializeFromEpoch(const core::Epoch& epoch) {
+  std::vector<Vec3> anchors_m;
+  std::vector<double> ranges_m;
+  for (const auto& set : epoch.range_sets) {
+    if (set.ranges.empty()) continue;
+    // The earliest range is the line of sight when it is not blocked.
+    const auto earliest = std::min_element(set.ranges.begin(), set.ranges.end(),
+                                           [](const auto& a, const auto& b) { return a.range_m < b.range_m; });
+    anchors_m.push_back(world_.anchors.at(static_cast<std::size_t>(set.anchor_index)).position_m);
+    ranges_m.push_back(earliest->range_m);
+  }
+  const double height_m = world_.agent_height_m.value_or(0.0);
+  if (const auto fix = estimation::FixPosition(anchors_m, ranges_m, height_m, range_sigma_m_);
+      fix && fix->rms_m <= 3.0 * range_sigma_m_ && (world_.floor_plan.walls().empty() ||
+                                                    world_.floor_plan.Encloses(fix->position_m.head<2>()))) {
+    tracker_.Initialize(epoch.t_s, fix->position_m.head<2>());
+    return true;
+  }
+  const auto start_m = start_.Add(epoch.t_s, mint::SearchFloorPlan(search_vas_, world_.floor_plan, epoch.range_sets, search_));
+  if (!start_m) return false;
+  tracker_.Initialize(epoch.t_s, *start_m);
+  return true;
+}
 
 StepOutput SlamEstimator::Process(const core::Epoch& epoch) {
   const SlamStepResult step = tracker_.Step(epoch.t_s, epoch.range_sets);

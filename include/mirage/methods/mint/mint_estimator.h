@@ -21,6 +21,11 @@ class MintEstimator final : public Estimator {
   MintEstimator(const MintOptions& options, const World& world);
 
   void Initialize(const Prior& prior) override;
+  /// Starts without a start point: the position in the floor plan whose visible LOS and
+  /// first-order VAs best explain the epoch's ranges, if it is unique (SearchFloorPlan with the
+  /// relocalization's score) and the next epoch's search confirms it (ConfirmedStart); false
+  /// (try the next epoch) otherwise.
+  bool InitializeFromEpoch(const core::Epoch& epoch) override;
   StepOutput Process(const core::Epoch& epoch) override;
 
   /// The virtual anchors the tracker uses (for reports and plots).
@@ -28,6 +33,8 @@ class MintEstimator final : public Estimator {
 
  private:
   World world_;
+  RelocalizationOptions search_;
+  ConfirmedStart start_;
   geometry::VirtualAnchorSet vas_;
   MintTracker tracker_;  // refers to vas_ and world_.floor_plan: declared after them
 };

@@ -71,4 +71,34 @@ std::optional<Vec2> SearchPosition(const geometry::VirtualAnchorSet& vas, const 
                                    const Vec2& center_m, std::span<const core::AnchorRanges> measurements,
                                    const RelocalizationOptions& options);
 
+/// A position found in the whole floor plan, and the coarse grid step it was found on (m).
+struct PlanFix {
+  Vec2 position_m = Vec2::Zero();
+  double grid_step_m = 0.0;
+};
+
+/// The best-scoring position anywhere in the floor plan's bounds (a coarse grid of
+/// search_step_m, or finer steps for a plan wider than 400 of them, then refined), if it
+/// reaches found_score with at least min_visible visible VAs and no cell more than two coarse
+/// steps away scores as well: a start without a start point. Empty for an empty plan.
+std::optional<PlanFix> SearchFloorPlan(const geometry::VirtualAnchorSet& vas, const geometry::FloorPlan& plan,
+                                       std::span<const core::AnchorRanges> measurements,
+                                       const RelocalizationOptions& options);
+
+/// A start from SearchFloorPlan is taken only when the next epoch's search confirms it: within
+/// two coarse grid steps plus the distance the walker can cover in between (speed_mps times the
+/// time, when the scenario states the speed). One epoch's ranges can match a wrong position by
+/// chance (diffuse multipath puts a peak near many expected ranges); two in a row rarely do.
+class ConfirmedStart {
+ public:
+  explicit ConfirmedStart(std::optional<double> speed_mps) : speed_mps_(speed_mps) {}
+
+  /// The confirmed start, if `fix` (this epoch's search, at t_s) confirms the previous epoch's.
+  std::optional<Vec2> Add(double t_s, const std::optional<PlanFix>& fix);
+
+ private:
+  std::optional<double> speed_mps_;
+  std::optional<std::pair<double, PlanFix>> pending_;
+};
+
 }  // namespace mirage::methods::mint
