@@ -1,15 +1,21 @@
 // SPDX-License-Identifier: MIT
 #include "mirage/estimation/init/position_fix.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <Eigen/Dense>
+
+#include "mirage/estimation/gates/chi2.h"
 
 namespace mirage::estimation {
 namespace {
 
 constexpr int kMaxIterations = 25;
 constexpr double kStepTolerance_m = 1e-9;
+/// Squared residuals below this chi-square quantile are consistent with the range noise: the
+/// probability of a 3-sigma interval, as the filters' default gates.
+constexpr double kConsistentProbability = 0.9973;
 
 bool Finite(std::span<const Vec3> anchors_m, std::span<const double> ranges_m) {
   for (const auto& a : anchors_m) {
@@ -146,16 +152,47 @@ std::optional<PositionFix> FixPosition(std::span<const Vec3> anchors_m, std::spa
   }
   if (!p_m.allFinite()) return std::nullopt;
   const int dims = planar ? 2 : 3;
-  const auto JtJ = GaussNewton(anchors_m, ranges_m, dims, p_m);
+  auto JtJ = GaussNewton(anchors_m, ranges_m, dims, p_m);
   if (!JtJ || !p_m.allFinite()) return std::nullopt;
+  const auto squared_residuals = [&](const Vec3& p) {
+    double sum = 0.0;
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const double e = (p - anchors_m[static_cast<std::size_t>(i)]).norm() - ranges_m[static_cast<std::size_t>(i)];
+      sum += e * e;
+    }
+    return sum;
+  };
+  double ssr = squared_residuals(p_m);
+  // Anchors close to one plane (ceiling anchors at somewhat different heights) have a second
+  // local solution near the mirror image about that plane, and with noisy ranges either may have
+  // the lower squared residuals. The same rule as for coplanar anchors applies: agents are below
+  // the anchors they see, so the floor-side solution is taken unless its residuals are
+  // inconsistent with the noise (above the 99.73 % chi-square quantile, n - 3 degrees of
+  // freedom) and the other one's are not.
+  if (!planar && !fix.mirror_rejected && std::abs(svd.matrixV()(2, 2)) >= 0.5) {
+    const Vec3 normal = svd.matrixV().col(2) * (svd.matrixV()(2, 2) >= 0.0 ? 1.0 : -1.0);  // points up
+    Vec3 mirror_m = p_m - 2.0 * normal.dot(p_m - centroid) * normal;
+    const auto mirror_JtJ = GaussNewton(anchors_m, ranges_m, dims, mirror_m);
+    if (mirror_JtJ && mirror_m.allFinite() && (mirror_m - p_m).norm() > 1e-6) {
+      const double mirror_ssr = squared_residuals(mirror_m);
+      const double consistent_m2 =
+          Chi2Quantile(kConsistentProbability, static_cast<int>(std::max<Eigen::Index>(n - 3, 1))) * range_sigma_m *
+          range_sigma_m;
+      const bool mirror_is_lower = normal.dot(mirror_m - p_m) < 0.0;
+      const double lower_ssr = mirror_is_lower ? mirror_ssr : ssr;
+      const double upper_ssr = mirror_is_lower ? ssr : mirror_ssr;
+      const bool take_lower = lower_ssr <= consistent_m2 || lower_ssr <= upper_ssr;
+      if (take_lower == mirror_is_lower) {
+        p_m = mirror_m;
+        JtJ = mirror_JtJ;
+        ssr = mirror_ssr;
+      }
+      fix.mirror_rejected = take_lower && upper_ssr <= consistent_m2;
+    }
+  }
   fix.position_m = p_m;
   fix.covariance_m2.topLeftCorner(dims, dims) = range_sigma_m * range_sigma_m * JtJ->inverse();
-  double sum = 0.0;
-  for (Eigen::Index i = 0; i < n; ++i) {
-    const double e = (p_m - anchors_m[static_cast<std::size_t>(i)]).norm() - ranges_m[static_cast<std::size_t>(i)];
-    sum += e * e;
-  }
-  fix.rms_m = std::sqrt(sum / static_cast<double>(n));
+  fix.rms_m = std::sqrt(ssr / static_cast<double>(n));
   return fix;
 }
 

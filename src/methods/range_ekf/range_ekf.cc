@@ -11,7 +11,7 @@
 #include "mirage/estimation/ekf_update.h"
 #include "mirage/estimation/gates/chi2.h"
 #include "mirage/estimation/gates/chi2_gate.h"
-#include "mirage/estimation/init/position_fix.h"
+#include "mirage/estimation/init/robust_position_fix.h"
 #include "mirage/estimation/meas/range_to_point.h"
 
 namespace mirage::methods::range_ekf {
@@ -101,37 +101,41 @@ void RangeEkf::Initialize(const Prior& prior) {
   Start(prior.t_s, prior.positions_m.front(), sp * sp * Eigen::Matrix3d::Identity());
 }
 
-std::optional<estimation::PositionFix> RangeEkf::Fix(std::span<const core::RangeSet> sets) const {
-  std::vector<Vec3> anchors_m;
-  std::vector<double> ranges_m;
+std::optional<estimation::RobustPositionFix> RangeEkf::Fix(std::span<const core::RangeSet> sets) const {
+  std::vector<estimation::AnchorCandidates> candidates;
   for (const auto& set : sets) {
     if (set.ranges.empty()) continue;
-    // The earliest range is the line of sight when it is not blocked.
-    const auto earliest = std::min_element(set.ranges.begin(), set.ranges.end(),
-                                           [](const auto& a, const auto& b) { return a.range_m < b.range_m; });
-    anchors_m.push_back(world_.anchors.at(static_cast<std::size_t>(set.anchor_index)).position_m);
-    ranges_m.push_back(earliest->range_m);
+    auto& candidate = candidates.emplace_back();
+    candidate.anchor_m = world_.anchors.at(static_cast<std::size_t>(set.anchor_index)).position_m;
+    for (const auto& range : set.ranges) candidate.ranges_m.push_back(range.range_m);
   }
-  return estimation::FixPosition(anchors_m, ranges_m, planar() ? std::optional(AgentHeight()) : std::nullopt,
-                                 options_.range_sigma_m);
+  // The gate of the fix's single residuals is the filter's own gate; with the gate off, 3 sigma.
+  const double gate_chi2 = options_.gate_chi2 > 0.0 ? options_.gate_chi2 : 9.0;
+  return estimation::FixPositionRobust(candidates, planar() ? std::optional(AgentHeight()) : std::nullopt,
+                                       options_.range_sigma_m, gate_chi2);
 }
 
 bool RangeEkf::InitializeFromEpoch(const core::Epoch& epoch) {
   const auto fix = Fix(epoch.range_sets);
   if (!fix) return false;
-  Start(epoch.t_s, fix->position_m, fix->covariance_m2);
+  Start(epoch.t_s, fix->fix.position_m, fix->fix.covariance_m2);
   return true;
 }
 
-bool RangeEkf::Reacquire(std::span<const core::RangeSet> sets) {
+bool RangeEkf::Reacquire(std::span<const core::RangeSet> sets, int explained_by_track) {
   if (options_.gate_chi2 == 0.0) return false;  // nothing is ever gated out
-  const auto fix = Fix(sets);
-  // The fix counts only when its ranges agree with each other: its residuals inside the gate.
-  const double variance_m2 = options_.range_sigma_m * options_.range_sigma_m;
-  if (!fix || !(fix->rms_m * fix->rms_m <= options_.gate_chi2 * variance_m2)) return false;
+  const auto robust = Fix(sets);
+  // The fix counts only when every one of its ranges passed the gate and there were more of
+  // them than unknowns, so that a wrong range would have shown in the residuals.
+  if (!robust || !robust->redundant) return false;
+  // It must explain more anchors than the track does: an anchor whose only range is a false peak
+  // (its true one missed) is gated out by a track that is fine, and a fix that explains no more
+  // anchors than the track is no evidence against it.
+  if (robust->anchors_used <= explained_by_track) return false;
+  const estimation::PositionFix* fix = &robust->fix;
+  const int d = planar() ? 2 : 3;
   // The track is lost when the prediction lies outside the fix's confidence region, combined
   // with its own, at the gate's tail probability carried to the position's dimension.
-  const int d = planar() ? 2 : 3;
   const estimation::BlockKey position(PositionType(planar()), 0);
   const Eigen::VectorXd difference_m = state_.Mean(position) - fix->position_m.head(d);
   const Eigen::MatrixXd combined_m2 = state_.Covariance(position) + fix->covariance_m2.topLeftCorner(d, d);
@@ -192,7 +196,7 @@ StepOutput RangeEkf::Process(const core::Epoch& epoch) {
     }
     // A range outside the gate is either a bad range or a sign that the track is lost; the
     // epoch's own fix tells which.
-    if (gated_out > 0 && Reacquire(std::span(epoch.range_sets).subspan(first, next - first))) {
+    if (gated_out > 0 && Reacquire(std::span(epoch.range_sets).subspan(first, next - first), static_cast<int>(rows.size()))) {
       out.relocalized = true;
       continue;
     }

@@ -123,6 +123,29 @@ TEST(RangeEkf, RestartsAtTheEpochsFixWhenItsRangesAgreeButNotWithTheTrack) {
   EXPECT_GT((pulled.agents.front().position_m - kTag).norm(), 0.5);
 }
 
+// The line of sight to one anchor is missed and a reflection 1.2 m longer is all that anchor
+// gives; a second anchor gives nothing. The gate rejects the reflection. The epoch's three ranges
+// fix a point 1.75 m off exactly (three coplanar anchors, no range to spare), so that fix is no
+// evidence that the track is lost and the filter does not restart at it. With a fourth, correct range the fix
+// leaves the false peak out by its deletion residual and agrees with the track.
+TEST(RangeEkf, DoesNotRestartOnALoneWrongRangeOfAnAnchorWhoseTrueRangeIsMissed) {
+  const World world = CeilingWorld();
+  RangeEkfOptions options;
+  options.initial_position_sigma_m = 0.05;
+  for (const bool fourth : {false, true}) {
+    RangeEkf filter(options, world);
+    filter.Initialize({0.0, {kTag}});
+    core::Epoch epoch = RangeEpoch(world, 0.1, kTag, {0.01, -0.02, 0.0, 0.015}, 2, 1.2);
+    if (!fourth) epoch.range_sets.pop_back();
+
+    const StepOutput out = filter.Process(epoch);
+
+    EXPECT_FALSE(out.relocalized) << "fourth range: " << fourth;
+    EXPECT_EQ(out.associations, fourth ? 3 : 2);
+    EXPECT_LT((out.agents.front().position_m - kTag).norm(), 0.1);
+  }
+}
+
 // Trajectories drawn from the filter's own model (the prior, the discrete white-acceleration
 // motion, Gaussian ranges): the time-averaged position NEES over many runs is the position's
 // dimension, 3, when the filter's covariance is right. A wrong Q, R or H moves it.

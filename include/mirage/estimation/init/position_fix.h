@@ -6,6 +6,8 @@
 // Anchors on one plane (the usual ceiling mount) leave the height ambiguous: the ranges fit the
 // point and its mirror image about the anchors' plane equally well. The mirror on the side away
 // from the floor (above ceiling anchors) is rejected: agents are below the anchors they see.
+// Anchors near one plane (ceiling anchors at different heights) have two local solutions too;
+// the upper one is taken only when the lower one's residuals are inconsistent with the noise.
 #pragma once
 
 #include <optional>
@@ -24,7 +26,9 @@ struct PositionFix {
   /// fix the z row and column are zero.
   Eigen::Matrix3d covariance_m2 = Eigen::Matrix3d::Zero();
   double rms_m = 0.0;            ///< RMS range residual at the fix (m)
-  bool mirror_rejected = false;  ///< the anchors were coplanar and the mirror above them was dropped
+  /// The anchors were (nearly) coplanar and a solution above them, consistent with the noise too,
+  /// was dropped.
+  bool mirror_rejected = false;
 };
 
 /// The fix from ranges_m[i] to anchors_m[i]. With known_height_m the agent's z is given and

@@ -6,8 +6,9 @@
 // ranges, inside a chi-square gate on the innovation variance. Event-driven: the filter
 // propagates to each record's time before its update. It uses no floor plan and no multipath.
 // When the gate rejects a range, the epoch's least-squares fix decides between a bad range and a
-// lost track: if the fix's residuals pass the same gate and the prediction lies outside the fix's
-// confidence region (the gate's tail probability in 2 or 3 dimensions), it restarts at the fix.
+// lost track: if the fix's residuals pass the same gate, it explains more anchors than the track
+// and the prediction lies outside the fix's confidence region (the gate's tail probability in 2
+// or 3 dimensions), it restarts at the fix.
 #pragma once
 
 #include <optional>
@@ -16,7 +17,7 @@
 #include <vector>
 
 #include "mirage/core/options_descriptor.h"
-#include "mirage/estimation/init/position_fix.h"
+#include "mirage/estimation/init/robust_position_fix.h"
 #include "mirage/estimation/measurement_row.h"
 #include "mirage/estimation/motion/constant_velocity.h"
 #include "mirage/estimation/state.h"
@@ -75,11 +76,14 @@ class RangeEkf final : public Estimator {
   [[nodiscard]] bool planar() const { return options_.mode == "planar"; }
   [[nodiscard]] double AgentHeight() const;
   void Start(double t_s, const Vec3& position_m, const Eigen::Matrix3d& position_covariance_m2);
-  /// The least-squares fix of the sets' earliest ranges, one per anchor.
-  [[nodiscard]] std::optional<estimation::PositionFix> Fix(std::span<const core::RangeSet> sets) const;
+  /// The fix of the sets' ranges whose every residual passes the gate (estimation/init/
+  /// robust_position_fix.h): wrong ranges and anchors with only wrong ranges are left out.
+  [[nodiscard]] std::optional<estimation::RobustPositionFix> Fix(std::span<const core::RangeSet> sets) const;
   /// Restarts at the fix of the sets when their ranges agree with each other (RMS residual inside
-  /// the gate) and the prediction lies outside the fix's confidence region: the track is lost.
-  bool Reacquire(std::span<const core::RangeSet> sets);
+  /// the gate), the fix explains more anchors (a range inside the gate) than the track's
+  /// `explained_by_track`, and the prediction lies outside the fix's confidence region: the
+  /// track is lost.
+  bool Reacquire(std::span<const core::RangeSet> sets, int explained_by_track);
   [[nodiscard]] AgentEstimate Estimate() const;
 
   RangeEkfOptions options_;
