@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: MIT
 """Compares the position-error percentile of two configurations run on the same seeds, e.g. SLAM
-from the anchors alone against SLAM with every VA known (issue 4's "within 1.3x" target).
+from the anchors alone against SLAM with every VA known (the "within 1.3x" target).
 
 Each DIR is the `--csv` output of one `mirage run` (its tracks.csv); the i-th --test DIR and the
 i-th --reference DIR must come from the same seed, so their run k saw the same signals. For each

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
 // The mirage command-line tool.
-//   mirage run SCENARIO.yaml [--runs N] [--seed S] [--threads T] [--json FILE] [--csv DIR] [--plot FILE]
+//   mirage run SCENARIO.yaml [--runs N] [--seed S] [--threads T] [--json FILE] [--csv DIR] [--plot FILE] [--quiet]
 //   mirage describe [METHOD|SECTION] [--markdown]
-//   mirage simulate SCENARIO.yaml --out DIR [--seed S] [--trajectory NAME] [--run R]
+//   mirage simulate SCENARIO.yaml --out DIR [--seed S] [--trajectory NAME] [--run R] [--quiet]
 //   mirage --version
 // Exit codes: 0 success, 2 bad input or usage, 3 internal error.
 #include <unistd.h>
@@ -287,7 +287,9 @@ int main(int argc, char** argv) {
   run->add_option("--seed", args.seed, "master seed, an integer in [0, 2^64 - 1] (overrides the scenario)");
   run->add_option("--threads", args.threads, "worker threads, 0 = all cores (results do not depend on it)");
   run->add_option("--json", args.json, "write the JSON report to this file");
-  run->add_option("--csv", args.csv, "write tracks.csv, runs.csv, paths.csv, virtual_anchors.csv into this directory");
+  run->add_option("--csv", args.csv,
+                  "write tracks.csv and runs.csv into this directory, and paths.csv (simulated anchor paths), map.csv "
+                  "(methods with a map) and variants.csv, error_by_step.csv (scenarios with a grid)");
   run->add_option("--plot", args.plot, "write a picture (PNG, PDF or SVG) of the run");
   run->add_flag("--quiet", args.quiet, "print nothing but errors");
 

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
 // One step of the cooperative EKF (Kulmer et al. Algorithm 1: prediction, expected paths by ray
 // tracing, association, stacked update, amplitude bookkeeping) for M = 2 agents with S walls in
-// the state (issue 5: M = 2 with 30 walls; S = 10 and 60 show how the cost grows with the state
-// size 4M + S). The room is an irregular S-gon of radius 3.4-4.6 m, so that every wall reflects
+// the state (M = 2 with 30 walls is the size of interest; S = 10 and 60 show how the cost grows
+// with the state size 4M + S). The room is an irregular S-gon of radius 3.4-4.6 m, so that every wall reflects
 // and none is collinear with another; the links' signals are the exact path lengths (no CIRs, no
 // extraction), precomputed for a 200-step walk, so that only the filter is timed.
 #include <cmath>

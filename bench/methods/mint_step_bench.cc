@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // One full per-anchor MINT step on the seminar-room defaults: MPC extraction of one CIR
-// (K = 20), visibility of the known VAs, association and the EKF update (issue 3 asks for at
-// least 10,000 such steps per second on one core).
+// (K = 20), visibility of the known VAs, association and the EKF update (the target is at least
+// 10,000 such steps per second on one core).
 #include <benchmark/benchmark.h>
 
 #include "bench_fixture.h"

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // One multipath-SLAM step (prediction, two-stage association, EKF update, discovery) with at
-// least 40 VAs in the EKF state (the issue asks for at least 5,000 such steps per second on one
+// least 40 VAs in the EKF state (the target is at least 5,000 such steps per second on one
 // core). The state size, not the signal chain, drives the cost (the joint covariance is dense),
 // so the tracker is fed exact ranges of the visible VAs (no CIRs, no MPC extraction) in an
 // 8 m x 6 m empty room with 3 anchors, and first warmed up until the lazily added prior VAs fill

@@ -16,11 +16,12 @@ const core::OptionsDescriptor<RangeLevelOptions>& RangeLevelOptionsDescriptor() 
     d.Number(&O::detection_probability,
              {.key = "detection_probability",
               .range = ValueRange::Closed(0.0, 1.0),
-              .doc = "Probability that a path above min_sinr_db is detected. 0.95 (issue 4)."});
+              .doc = "Probability that a path above min_sinr_db is detected. 0.95: a simulation "
+                     "default (the MINT and SLAM papers give none), one missed path in twenty."});
     d.Number(&O::clutter_rate, {.key = "clutter_rate",
                                 .range = ValueRange::Closed(0.0, 1000.0),
                                 .doc = "Mean number of clutter ranges per anchor and step (Poisson), uniform over "
-                                       "the CIR window. 1 (issue 4)."});
+                                       "the CIR window. 1: a simulation default (the MINT and SLAM papers give none)."});
     d.Number(&O::min_sinr_db, {.key = "min_sinr_db",
                                .unit = "dB",
                                .range = ValueRange::Closed(-200.0, 200.0),

@@ -44,7 +44,7 @@ const core::OptionsDescriptor<DivergenceRule>& DivergenceRuleDescriptor() {
                                .unit = "m",
                                .range = ValueRange::Positive(),
                                .doc = "A run diverged when its mean position error over the last part exceeds this. "
-                                      "0.5 m (ROADMAP.md)."});
+                                      "0.5 m, mirage's default rule; every report states the rule it used."});
     d.Number(&O::last_fraction, {.key = "last_fraction",
                                  .range = ValueRange::Closed(core::kTinyOption, 1.0),
                                  .doc = "The last part: this fraction of the run's final steps is averaged. 0.2."});

@@ -59,7 +59,7 @@ std::vector<MethodInfo> BuiltIn() {
   {
     auto m = Entry<range_ekf::RangeEkfOptions, range_ekf::RangeEkf>(
         "range_ekf", "a 3-D range EKF (or planar at a known height) with a chi-square gate: the plain baseline",
-        "textbook EKF; ROADMAP item 16 builds on it", range_ekf::RangeEkfOptionsDescriptor());
+        "textbook EKF with a constant-velocity model", range_ekf::RangeEkfOptionsDescriptor());
     m.start_sigma_m = [](const void* o) { return static_cast<const range_ekf::RangeEkfOptions*>(o)->initial_position_sigma_m; };
     out.push_back(std::move(m));
   }

@@ -23,9 +23,11 @@ namespace mirage::channel {
 
 /// Parameters of the range-level simulation.
 struct RangeLevelOptions {
-  /// Probability that a path above min_sinr_db is detected, in [0, 1]. 0.95 (issue 4).
+  /// Probability that a path above min_sinr_db is detected, in [0, 1]. 0.95: a
+  /// simulation default (the MINT and SLAM papers give none), one missed path in twenty.
   double detection_probability = 0.95;
-  /// Mean number of clutter ranges per anchor and step (Poisson), in [0, 1000]. 1 (issue 4).
+  /// Mean number of clutter ranges per anchor and step (Poisson), in [0, 1000].
+  /// 1: a simulation default (the MINT and SLAM papers give none).
   double clutter_rate = 1.0;
   /// Paths below this true SINR are never detected (dB), in [-200, 200]. -10 dB: at lower SINR the
   /// matched-filter peak of a path is lost in the diffuse multipath.

@@ -32,7 +32,8 @@ ErrorStats ComputeErrorStats(std::span<const double> errors_m);
 /// A run diverged when its mean error over the last `last_fraction` of the steps exceeds
 /// `threshold_m`.
 struct DivergenceRule {
-  /// Error threshold (m), in [1e-9, 1e9]. 0.5 m (ROADMAP.md).
+  /// Error threshold (m), in [1e-9, 1e9]. 0.5 m, mirage's default rule; every report states the
+  /// rule it used.
   double threshold_m = 0.5;
   /// Fraction of the final steps that is averaged, in [1e-9, 1]. 0.2.
   double last_fraction = 0.2;

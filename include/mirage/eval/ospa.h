@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // OSPA distance between two finite point sets (Schuhmacher, Vo, Vo 2008), the map error of
-// multipath SLAM (issue 4) and the data-association metric of Leitinger Eq. (8):
+// multipath SLAM and the data-association metric of Leitinger Eq. (8):
 //   d = ( (1/n) ( min_pi sum_i min(c, |x_i - y_pi(i)|)^p + c^p |m - n'| ) )^(1/p),
 // with n = max(|X|, |Y|): every point without a partner costs the cut-off c.
 #pragma once
