@@ -60,6 +60,7 @@ const core::OptionsDescriptor<TrackRecoveryOptions>& TrackRecoveryOptionsDescrip
                      "does (seeds 1-9). Derived: the time to walk 0.5 m; the lost tracks began with a LOS lost at a "
                      "corner, and what is visible changes with the distance walked past it.",
               .derived = core::WalkingTime(0.5)});
+    d.Retired("floor_plan_watch_steps", "floor_plan_watch_s", "seconds, not steps: the old value times dt_s (10 steps of 0.1 s = 1 s), or leave it out for the default derived from speed_mps");
     d.Integer(&O::lost_steps, {.key = "lost_steps",
                                .unit = "steps",
                                .range = ValueRange::Closed(1.0, 1e6),

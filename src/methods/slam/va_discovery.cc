@@ -179,6 +179,8 @@ const core::OptionsDescriptor<DiscoveryOptions>& DiscoveryOptionsDescriptor() {
                      "an old pair's evidence comes from positions far behind. 15 s. Derived: the time to walk 7.5 m, "
                      "about a room's length (150 steps at 0.5 m/s and 0.1 s).",
               .derived = core::WalkingTime(7.5)});
+    d.Retired("candidate_timeout_steps", "candidate_timeout_s", "seconds, not steps: the old value times dt_s (20 steps of 0.1 s = 2 s), or leave it out for the default derived from speed_mps");
+    d.Retired("candidate_max_age_steps", "candidate_max_age_s", "seconds, not steps: the old value times dt_s (150 steps of 0.1 s = 15 s), or leave it out for the default derived from speed_mps");
     d.Number(&O::duplicate_radius_m,
              {.key = "duplicate_radius_m",
               .unit = "m",

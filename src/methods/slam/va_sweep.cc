@@ -24,6 +24,7 @@ const core::OptionsDescriptor<SweepOptions>& SweepOptionsDescriptor() {
                             .doc = "How far back ranges are searched. 6 s (60 steps of 0.1 s). Derived: the time to "
                                    "walk 3 m, within which the buffered positions must span min_baseline_m.",
                             .derived = core::WalkingTime(3.0)});
+    d.Retired("window_steps", "window_s", "seconds, not steps: the old value times dt_s (60 steps of 0.1 s = 6 s), or leave it out for the default derived from speed_mps");
     d.Integer(&O::every_steps,
               {.key = "every_steps",
                .unit = "steps",
