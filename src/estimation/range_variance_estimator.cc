@@ -5,6 +5,8 @@
 #include <cmath>
 #include <limits>
 
+#include "mirage/core/derived_defaults.h"
+
 namespace mirage::estimation {
 
 namespace {
@@ -48,7 +50,10 @@ const core::OptionsDescriptor<RangeVarianceOptions>& RangeVarianceOptionsDescrip
               .unit = "m",
               .range = ValueRange::Positive(),
               .doc = "Range standard deviation sigma_VA before any estimate. 0.07 m (Lafer's text; "
-                     "Tab. 3.2 misprints it as 0.07 m^2)."});
+                     "Tab. 3.2 misprints it as 0.07 m^2). Derived: the scenario's range noise, which is then every "
+                     "range's standard deviation until the window allows an estimate, and for good when the ranges "
+                     "carry no amplitudes (range-level input).",
+              .derived = core::RangeSigmas(1.0)});
     d.Number(&O::max_variance_factor, {.key = "max_variance_factor",
                                        .range = ValueRange::Closed(1.0, core::kHugeOption),
                                        .doc = "sigma_VA,max^2 = factor * sigma_VA^2 for an SINR estimate of zero or a "
@@ -58,7 +63,14 @@ const core::OptionsDescriptor<RangeVarianceOptions>& RangeVarianceOptionsDescrip
                                .range = ValueRange::Positive(),
                                .doc = "Floor of the estimated standard deviation (a gap in the thesis): Var[Y] -> 0 "
                                       "would give zero variance. 1 cm, about the delay error model mismatch leaves at "
-                                      "high SINR."});
+                                      "high SINR. Derived: 1 cm, or the scenario's range noise if that is smaller (the "
+                                      "floor cannot lie above the noise the ranges are stated to have).",
+                               .derived = core::DerivedDefault{
+                                   .formula = "min(" + core::FormatNumber(O{}.min_sigma_m) + " m, range_sigma_m)",
+                                   .needs = {core::PhysicalKey::kRangeSigma},
+                                   .compute = [](const core::PhysicalKeys& k) {
+                                     return std::min(O{}.min_sigma_m, *k.range_sigma_m);
+                                   }}});
     d.Number(&O::overlap_distance_m,
              {.key = "overlap_distance_m",
               .unit = "m",

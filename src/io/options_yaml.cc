@@ -67,6 +67,12 @@ void ReadField(YamlMap& m, const OptionField& field, const core::PhysicalKeys& k
 
 void ReadOptionsObject(YamlMap& section, const core::OptionsDescriptorBase& descriptor, const core::PhysicalKeys& keys,
                        void* out) {
+  for (const auto& retired : descriptor.retired()) {
+    if (section.Has(retired.key)) {
+      section.Fail(retired.key, fmt::format("this key was replaced by {} ({}); write {} instead", retired.replacement,
+                                            retired.how, retired.replacement));
+    }
+  }
   for (const auto& field : descriptor.fields()) ReadField(section, field, keys, out);
   section.RejectUnknownKeys();
   // Range problems of the values read were thrown above; this finds the cross-field problems

@@ -78,6 +78,15 @@ struct IntegerSpec {
   std::string doc;   ///< one or two sentences: meaning, unit, why the default
 };
 
+/// A key that an earlier version read and this one does not, with the key that replaced it: a
+/// file that still uses it fails with a message that names the new key (the value is not carried
+/// over, since the unit changed: steps became seconds).
+struct RetiredKey {
+  std::string key;          ///< the old key ("candidate_timeout_steps")
+  std::string replacement;  ///< the new key at the same level ("candidate_timeout_s")
+  std::string how;          ///< how to convert a value ("seconds: the old value times dt_s")
+};
+
 /// Declaration of a boolean, choice or section field.
 struct FieldSpec {
   std::string key;  ///< YAML key, equal to the member's name
@@ -179,6 +188,8 @@ class OptionsDescriptorBase {
   [[nodiscard]] const std::vector<OptionField>& fields() const { return fields_; }
   /// The cross-field checks in declaration order.
   [[nodiscard]] const std::vector<CrossCheck>& checks() const { return checks_; }
+  /// The retired keys of this level (a reader fails on them, naming the replacement).
+  [[nodiscard]] const std::vector<RetiredKey>& retired() const { return retired_; }
   /// A default-constructed object of the struct: the defaults of a top-level section.
   [[nodiscard]] const void* default_object() const { return defaults_.get(); }
   /// The field with this key at this level, or null.
@@ -199,6 +210,8 @@ class OptionsDescriptorBase {
   void AddField(OptionField field);
   /// Adds a cross-field check.
   void AddCheck(CrossCheck check) { checks_.push_back(std::move(check)); }
+  /// Adds a retired key; its replacement must be a field of this level.
+  void AddRetired(RetiredKey retired) { retired_.push_back(std::move(retired)); }
 
  private:
   void ForEachField(const std::string& prefix, const void* options, const FieldVisitor& visit) const;
@@ -207,6 +220,7 @@ class OptionsDescriptorBase {
   std::shared_ptr<const void> defaults_;
   std::vector<OptionField> fields_;
   std::vector<CrossCheck> checks_;
+  std::vector<RetiredKey> retired_;
 };
 
 /// The descriptor of options struct T, built once with the chained declarations below, e.g.
@@ -318,6 +332,15 @@ class OptionsDescriptor : public OptionsDescriptorBase {
   OptionsDescriptor& Check(std::string description, std::function<std::vector<std::string>(const T&)> check) {
     AddCheck({std::move(description),
               [check = std::move(check)](const void* o) { return check(*static_cast<const T*>(o)); }});
+    return *this;
+  }
+
+  /// A key no longer read (RetiredKey): a file that uses it fails with a message naming
+  /// `replacement`, which must be declared at this level already.
+  OptionsDescriptor& Retired(std::string key, std::string replacement, std::string how) {
+    assert(Find(replacement) != nullptr && "a retired key's replacement must be a field");
+    assert(Find(key) == nullptr && "a retired key cannot be a field");
+    AddRetired({std::move(key), std::move(replacement), std::move(how)});
     return *this;
   }
 

@@ -33,13 +33,14 @@ struct RangeVarianceOptions {
   /// Minimum number of amplitudes N_min in the window, in [3, 1e6]. 15 (Tab. 3.2).
   int min_samples = 15;
   /// Default range standard deviation sigma_VA before any estimate (m), in [1e-9, 1e9]. 0.07 m
-  /// (the text; Tab. 3.2 misprints it as 0.07 m^2).
+  /// (the text; Tab. 3.2 misprints it as 0.07 m^2). Derived from the scenario's range noise when
+  /// it states one (the descriptor): ranges without amplitudes keep this for good.
   double default_sigma_m = 0.07;
   /// sigma_VA,max^2 = factor * sigma_VA^2 for SINR estimates of zero or complex, in [1, 1e9]. 10.
   double max_variance_factor = 10.0;
   /// Floor of the standard deviation (m), in [1e-9, 1e9] and <= default_sigma_m [GAP in the
   /// thesis]: Var[Y] -> 0 would give zero variance. 1 cm, about the delay error that model
-  /// mismatch leaves at high SINR.
+  /// mismatch leaves at high SINR; with a stated range noise below 1 cm, that noise.
   double min_sigma_m = 0.01;
   /// Two expected ranges closer than this overlap (m), in [0, 1e9]; overlapping samples are
   /// discarded because Eq. (3.25) does not hold for them [GAP: the thesis gives no criterion].

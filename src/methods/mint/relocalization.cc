@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "mirage/core/derived_defaults.h"
 #include "mirage/geometry/visibility.h"
 
 namespace mirage::methods::mint {
@@ -27,7 +28,8 @@ const core::OptionsDescriptor<RelocalizationOptions>& RelocalizationOptionsDescr
               .unit = "m",
               .range = ValueRange::Closed(1e-6, 10.0),
               .doc = "A VA matches when a measured range lies within this distance of its expected range. 5 cm: "
-                     "about 2 sigma of a first-order reflection's range at 5 dB SINR."});
+                     "about 2 sigma of a first-order reflection's range at 5 dB SINR. Derived: 2 range sigmas.",
+              .derived = core::RangeSigmas(2.0)});
     d.Integer(&O::max_order,
               {.key = "max_order",
                .range = ValueRange::Closed(0.0, geometry::kMaxVirtualAnchorOrder),

@@ -8,6 +8,7 @@
 #include <unordered_set>
 
 #include "mirage/core/constants.h"
+#include "mirage/core/derived_defaults.h"
 #include "mirage/estimation/covariance_ops.h"
 #include "mirage/estimation/gates/chi2_gate.h"
 #include "mirage/estimation/gates/rician_gate.h"
@@ -15,6 +16,7 @@
 #include "mirage/estimation/motion/speed_limit.h"
 #include "mirage/estimation/range_association.h"
 #include "mirage/geometry/visibility.h"
+#include "mirage/methods/elapsed_time.h"
 #include "mirage/methods/mint/relocalization.h"
 #include "mirage/methods/tracker_options.h"
 
@@ -150,7 +152,9 @@ const core::OptionsDescriptor<SlamOptions>& SlamOptionsDescriptor() {
               .range = ValueRange::NonNegative(),
               .doc = "A walker's speed limit (mirage; 0 = off): a faster velocity estimate is scaled back onto it "
                      "after each update. 1.5 m/s, a brisk walk: it kept a restarted track from running away (seminar "
-                     "room, seed 30) and changed no other run."});
+                     "room, seed 30) and changed no other run. Derived: 3 times the walker's speed (1.5 m/s at the "
+                     "seminar room's 0.5 m/s); a velocity estimate beyond it is a track following clutter.",
+              .derived = core::SpeedTimes(3.0)});
     d.Section(
         &O::variance,
         {.key = "variance", .doc = "Online range-variance estimation per VA (Lafer Sec. 3.6, Leitinger Sec. III-C)."},
@@ -212,7 +216,7 @@ void SlamTracker::Initialize(double t_s, const Vec2& p0_m) {
   recovery_.Reset();
   map_.clear();
   step_ = 0;
-  last_los_miss_step_ = -1;
+  last_los_miss_t_s_.reset();
   next_discovered_id_ = kFirstDiscoveredVaId;
   for (const auto& va : known_vas_->all()) {
     if (va.order > options_.prior_max_order) continue;
@@ -550,7 +554,7 @@ SlamStepResult SlamTracker::Step(double t_s, std::span<const core::AnchorRanges>
     std::erase_if(los, [&](const Pairing& p) { return Filtered(p.map_index); });
     result.reacquired_los =
         static_cast<int>(std::count_if(los.begin(), los.end(), [](const Pairing& p) { return p.reacquired; }));
-    NoteLosMisses(los);
+    NoteLosMisses(los, t_s);
     if (options_.shadow_cone_deg > 0.0) blocked_m = BlockedAnchors();
     if (!los.empty()) {
       std::vector<double> variances;
@@ -562,7 +566,7 @@ SlamStepResult SlamTracker::Step(double t_s, std::span<const core::AnchorRanges>
   std::vector<Pairing> pairings = Associate(reference, measurements, false, options_.innovation_gate_chi2);
   // Without stage 1 the LOS misses are read off the joint association: the floor-plan recovery's
   // watch window needs them (the shadow cone and the re-acquisition are stage 1's).
-  if (!options_.reassociate) NoteLosMisses(pairings);
+  if (!options_.reassociate) NoteLosMisses(pairings, t_s);
   MarkShadowed(pairings, blocked_m, reference.position_m);
 
   std::vector<double> variances;
@@ -633,7 +637,8 @@ SlamStepResult SlamTracker::Step(double t_s, std::span<const core::AnchorRanges>
       if (map_[i].va.anchor_index == anchor.anchor_index && !Filtered(i)) active_m.push_back(VaPosition(i));
     }
     auto found_vas =
-        discovery_.Process(step_, anchor.anchor_index, agent_m, agent_covariance_m2, rest, active_m, options_.cutoff_m);
+        discovery_.Process(step_, t_s, anchor.anchor_index, agent_m, agent_covariance_m2, rest, active_m,
+                           options_.cutoff_m);
     for (auto& found : found_vas) {
       // Lafer Eq. 4.7-4.9 with G_x = [I_2 0]: the new VA is correlated with everything the agent
       // position is, and P_new = P_pp + P_rls.
@@ -671,7 +676,7 @@ SlamStepResult SlamTracker::Step(double t_s, std::span<const core::AnchorRanges>
   return result;
 }
 
-void SlamTracker::NoteLosMisses(const std::vector<Pairing>& pairings) {
+void SlamTracker::NoteLosMisses(const std::vector<Pairing>& pairings, double t_s) {
   // A LOS pairing counts only if the VA filter lets it update (stage 1 has dropped the others).
   const auto is_los_of = [&](const Pairing& p, int anchor_index) {
     return p.anchor_index == anchor_index && map_[p.map_index].va.origin == MapVaOrigin::kAnchor &&
@@ -684,7 +689,7 @@ void SlamTracker::NoteLosMisses(const std::vector<Pairing>& pairings) {
                                 [&](const Pairing& p) { return is_los_of(p, e.va.anchor_index); });
     any_missed = any_missed || e.los_missed;
   }
-  if (any_missed) last_los_miss_step_ = step_;
+  if (any_missed) last_los_miss_t_s_ = t_s;
 }
 
 bool SlamTracker::LosMissed(int anchor_index) const {
@@ -731,7 +736,7 @@ bool SlamTracker::RecoverTrack(double t_s, std::span<const core::AnchorRanges> m
   // missing (at stage 1, or in the joint association without reassociate), which is how the lost
   // known-VA tracks began (an overshoot at a corner took the LOS out of the cut-off).
   const bool watching =
-      last_los_miss_step_ >= 0 && step_ - last_los_miss_step_ <= options_.recovery.floor_plan_watch_steps;
+      last_los_miss_t_s_ && !Exceeds(t_s - *last_los_miss_t_s_, options_.recovery.floor_plan_watch_s);
   if (floor_plan && !watching && !recovery_.pending()) return false;
   std::vector<MapPoint> anchors;
   std::vector<MapPoint> points;  // scored everywhere

@@ -4,14 +4,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include "mirage/core/derived_defaults.h"
 #include "mirage/geometry/segment.h"
 
 namespace mirage::methods::slam {
-namespace {
-// Two LOS circles that miss each other by less than this still give a candidate (m): range noise
-// and a few centimetres of detection bias can separate circles that should touch.
-constexpr double kCircleSlackM = 0.05;
-}  // namespace
 
 const core::OptionsDescriptor<TrackRecoveryOptions>& TrackRecoveryOptionsDescriptor() {
   using core::ValueRange;
@@ -24,7 +20,20 @@ const core::OptionsDescriptor<TrackRecoveryOptions>& TrackRecoveryOptionsDescrip
               .unit = "m",
               .range = ValueRange::Positive(),
               .doc = "A map point matches when a measured range lies within this distance of its expected range. 5 "
-                     "cm: about 2 sigma of a first-order reflection's range at 5 dB SINR, as in MINT."});
+                     "cm: about 2 sigma of a first-order reflection's range at 5 dB SINR, as in MINT. Derived: 2 "
+                     "range sigmas.",
+              .derived = core::RangeSigmas(2.0)});
+    d.Number(&O::circle_slack_m,
+             {.key = "circle_slack_m",
+              .unit = "m",
+              .range = ValueRange::Positive(),
+              .doc = "Two LOS circles that miss each other by less than this still give a candidate, the point between "
+                     "them: range noise and detection bias can separate circles that should touch. 5 cm. Derived: 2 "
+                     "sigma of the gap, which is a sum of two range errors.",
+              .derived = core::DerivedDefault{
+                  .formula = "2 * sqrt(2) * range_sigma_m",
+                  .needs = {core::PhysicalKey::kRangeSigma},
+                  .compute = [](const core::PhysicalKeys& k) { return 2.0 * std::sqrt(2.0) * *k.range_sigma_m; }}});
     d.Integer(&O::los_candidates,
               {.key = "los_candidates",
                .range = ValueRange::Closed(1.0, 100.0),
@@ -41,13 +50,17 @@ const core::OptionsDescriptor<TrackRecoveryOptions>& TrackRecoveryOptionsDescrip
                .doc = "Replaces min_margin when the map is a known floor plan's VAs, which score only where visible "
                       "(about 35 per anchor: more chance matches). 4: only the two lost runs restart (seminar room, "
                       "seeds 1-9); with 2 good tracks restart too."});
-    d.Integer(&O::floor_plan_watch_steps,
-              {.key = "floor_plan_watch_steps",
-               .unit = "steps",
-               .range = ValueRange::Closed(0.0, 1e6),
-               .doc = "With the floor plan's VAs the search (ray tracing every candidate, about 110 us a step) runs "
-                      "only this many steps after an anchor's LOS found no range, and while a pending chain continues "
-                      "(0: the miss step only). 10: both lost known-VA tracks restart, no good one does (seeds 1-9)."});
+    d.Number(&O::floor_plan_watch_s,
+             {.key = "floor_plan_watch_s",
+              .unit = "s",
+              .range = ValueRange::NonNegative(),
+              .doc = "With the floor plan's VAs the search (ray tracing every candidate, about 110 us a step) runs "
+                     "only this long after an anchor's LOS found no range, and while a pending chain continues (0: "
+                     "the miss step only). 1 s (10 steps of 0.1 s): both lost known-VA tracks restart, no good one "
+                     "does (seeds 1-9). Derived: the time to walk 0.5 m; the lost tracks began with a LOS lost at a "
+                     "corner, and what is visible changes with the distance walked past it.",
+              .derived = core::WalkingTime(0.5)});
+    d.Retired("floor_plan_watch_steps", "floor_plan_watch_s", "seconds, not steps: the old value times dt_s (10 steps of 0.1 s = 1 s), or leave it out for the default derived from speed_mps");
     d.Integer(&O::lost_steps, {.key = "lost_steps",
                                .unit = "steps",
                                .range = ValueRange::Closed(1.0, 1e6),
@@ -57,7 +70,9 @@ const core::OptionsDescriptor<TrackRecoveryOptions>& TrackRecoveryOptionsDescrip
               .unit = "m",
               .range = ValueRange::Positive(),
               .doc = "The winning candidates of consecutive steps must lie within this distance of one another: a "
-                     "walker's step (0.05 m at 0.5 m/s and 10 Hz) plus the candidates' scatter. 0.3 m."});
+                     "walker's step (0.05 m at 0.5 m/s and 10 Hz) plus the candidates' scatter. 0.3 m. Derived: one "
+                     "step of motion plus the 0.25 m of scatter.",
+              .derived = core::StepLengthPlus(0.25)});
     d.Number(&O::max_jump_m,
              {.key = "max_jump_m",
               .unit = "m",
@@ -71,7 +86,8 @@ const core::OptionsDescriptor<TrackRecoveryOptions>& TrackRecoveryOptionsDescrip
               .range = ValueRange::Positive(),
               .doc = "A chain of winning candidates moving faster than this from its first step to its last is chance "
                      "intersections, not a walker: no restart. 1.5 m/s, a brisk walk; good restarts moved at "
-                     "0.42-0.99 m/s (seminar room)."});
+                     "0.42-0.99 m/s (seminar room). Not derived from the walker's speed: the chain's speed includes "
+                     "the candidates' scatter over its few steps, far above a slow walk."});
     return d;
   }();
   return descriptor;
@@ -114,20 +130,21 @@ std::vector<double> LosRanges(std::span<const core::AnchorRanges> measurements, 
   return out;
 }
 
-// Intersections of the circles (c1, r1) and (c2, r2); circles that miss by up to kCircleSlackM
-// give the point on the centre line between them.
-void LooseCircleIntersections(const Vec2& c1, double r1, const Vec2& c2, double r2, std::vector<Vec2>& out) {
+// Intersections of the circles (c1, r1) and (c2, r2); circles that miss by up to slack_m give the
+// point on the centre line between them.
+void LooseCircleIntersections(const Vec2& c1, double r1, const Vec2& c2, double r2, double slack_m,
+                              std::vector<Vec2>& out) {
   const Vec2 d = c2 - c1;
   const double l = d.norm();
   if (l < 1e-9) return;
   const Vec2 u = d / l;
   if (r1 + r2 < l) {
-    if (l - (r1 + r2) < kCircleSlackM) out.push_back(c1 + u * (r1 + 0.5 * (l - r1 - r2)));
+    if (l - (r1 + r2) < slack_m) out.push_back(c1 + u * (r1 + 0.5 * (l - r1 - r2)));
     return;
   }
   if (std::abs(r1 - r2) > l) {
     const double gap = std::abs(r1 - r2) - l;
-    if (gap >= kCircleSlackM) return;
+    if (gap >= slack_m) return;
     // One circle inside the other, nearly touching: the touching point on the line.
     const double s = r1 > r2 ? r1 - 0.5 * gap : -(r1 - 0.5 * gap);
     out.push_back(c1 + u * s);
@@ -142,7 +159,7 @@ void LooseCircleIntersections(const Vec2& c1, double r1, const Vec2& c2, double 
 }  // namespace
 
 std::vector<Vec2> LosCandidates(std::span<const MapPoint> anchors, std::span<const core::AnchorRanges> measurements,
-                                int los_candidates) {
+                                int los_candidates, double slack_m) {
   std::vector<std::vector<double>> radii_m;
   for (const MapPoint& anchor : anchors) radii_m.push_back(LosRanges(measurements, anchor.anchor_index, los_candidates));
   std::vector<Vec2> out;
@@ -150,7 +167,7 @@ std::vector<Vec2> LosCandidates(std::span<const MapPoint> anchors, std::span<con
     for (std::size_t j = i + 1; j < anchors.size(); ++j) {
       for (const double a : radii_m[i]) {
         for (const double b : radii_m[j]) {
-          LooseCircleIntersections(anchors[i].position_m, a, anchors[j].position_m, b, out);
+          LooseCircleIntersections(anchors[i].position_m, a, anchors[j].position_m, b, slack_m, out);
         }
       }
     }
@@ -174,7 +191,7 @@ std::optional<Restart> TrackRecovery::Check(double t_s, const Vec2& estimate_m, 
   Vec2 best_m = Vec2::Zero();
   int follow_score = -1;
   Vec2 follow_m = Vec2::Zero();
-  for (const Vec2& c : LosCandidates(anchors, measurements, options_.los_candidates)) {
+  for (const Vec2& c : LosCandidates(anchors, measurements, options_.los_candidates, options_.circle_slack_m)) {
     if ((c - estimate_m).norm() > options_.max_jump_m) continue;
     const int score = score_at(c);
     if (score > best_score || (score == best_score && (c - estimate_m).norm() < (best_m - estimate_m).norm())) {

@@ -7,9 +7,11 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "mirage/core/derived_defaults.h"
 #include "mirage/estimation/init/range_bancroft.h"
 #include "mirage/estimation/init/range_point_fit.h"
 #include "mirage/estimation/range_association.h"
+#include "mirage/methods/elapsed_time.h"
 
 namespace mirage::methods::slam {
 
@@ -26,12 +28,26 @@ const core::OptionsDescriptor<DiscoveryOptions>& DiscoveryOptionsDescriptor() {
               .range = ValueRange::Positive(),
               .doc = "A step's ranges are used only while the agent's position std along its worst direction is at "
                      "most this (mirage; e.g. 100 switches it off). 0.1 m: at a 26 cm std a mirror VA was promoted "
-                     "and held the track 1-3 m off (seminar room, seed 4); 0.05 m drops good steps."});
+                     "and held the track 1-3 m off (seminar room, seed 4); 0.05 m drops good steps. Derived: 5 range "
+                     "sigmas; a tracked agent's std is the range noise times the geometry's dilution (1-2 with two "
+                     "anchors), so 5 sigma marks a track that has lost its hold (0.1 m at 2 cm of noise).",
+              .derived = core::RangeSigmas(5.0)});
     d.Number(&O::group_gate_m, {.key = "group_gate_m",
                                 .unit = "m",
                                 .range = ValueRange::Positive(),
                                 .doc = "A range continues a group within this distance of the group's last range. "
-                                       "0.07 m = v_max dT + 2 cm (a gap in the thesis; digest Sec. 3.3)."});
+                                       "0.07 m = v_max dT + 2 cm (a gap in the thesis; digest Sec. 3.3). Derived: the "
+                                       "range changes by at most one step of motion, and the difference of two ranges "
+                                       "has sqrt(2) sigma of noise, 2 sigma of it kept (95 %). The seminar room's "
+                                       "consecutive CIR ranges are correlated, so their differences are smaller than "
+                                       "white noise's.",
+                                .derived = core::DerivedDefault{
+                                    .formula = "speed_mps * dt_s + 2 * sqrt(2) * range_sigma_m",
+                                    .needs = {core::PhysicalKey::kSpeed, core::PhysicalKey::kStepTime,
+                                              core::PhysicalKey::kRangeSigma},
+                                    .compute = [](const core::PhysicalKeys& k) {
+                                      return *k.speed_mps * *k.dt_s + 2.0 * std::sqrt(2.0) * *k.range_sigma_m;
+                                    }}});
     d.Integer(
         &O::group_max_gap_steps,
         {.key = "group_max_gap_steps",
@@ -53,7 +69,9 @@ const core::OptionsDescriptor<DiscoveryOptions>& DiscoveryOptionsDescriptor() {
               .unit = "m",
               .range = ValueRange::Positive(),
               .doc = "Largest RMS range residual of a Bancroft solution over its group: ranges that no single point "
-                     "explains (diffuse peaks chained by chance) are no VA. 3 cm."});
+                     "explains (diffuse peaks chained by chance) are no VA. 3 cm. Derived: 1.5 range sigmas, the 99th "
+                     "percentile of a true group's RMS (sigma sqrt(chi^2_8 / 10) for 10 ranges and 2 unknowns).",
+              .derived = core::RangeSigmas(1.5)});
     d.Number(&O::rls_initial_sigma_m,
              {.key = "rls_initial_sigma_m",
               .unit = "m",
@@ -87,7 +105,9 @@ const core::OptionsDescriptor<DiscoveryOptions>& DiscoveryOptionsDescriptor() {
               .range = ValueRange::Positive(),
               .doc = "Promotion check: largest RMS residual of the batch fit over the candidate's ranges (outliers "
                      "excluded). Range noise (1-2 cm) and the agent's error (about 3 cm) add to 3.6 cm; 4.5 cm leaves "
-                     "25 % margin."});
+                     "25 % margin. Derived: 2 range sigmas; the noise and an agent error as large (the agent is "
+                     "located by ranges of that noise) add to sqrt(2) sigma, plus 40 %.",
+              .derived = core::RangeSigmas(2.0)});
     d.Number(&O::verify_min_inlier_fraction,
              {.key = "verify_min_inlier_fraction",
               .range = fraction_range,
@@ -99,12 +119,23 @@ const core::OptionsDescriptor<DiscoveryOptions>& DiscoveryOptionsDescriptor() {
               .doc = "Promotion check: the mirror solution's truncated RMS residual must be at least this many times "
                      "the winner's, else the pair is still ambiguous. 1.5: true VAs reach it after about 0.5 m of "
                      "walking across (seminar room)."});
+    d.Number(&O::verify_residual_cap_m,
+             {.key = "verify_residual_cap_m",
+              .unit = "m",
+              .range = ValueRange::Positive(),
+              .doc = "Promotion check: cap of each residual in the truncated RMS that compares a fit with its "
+                     "mirror; a range of another path or clutter counts this much however far off. 0.1 m. Derived: 5 "
+                     "range sigmas, above any residual of the VA's own ranges (3 sigma of the noise with an agent "
+                     "error as large: 4.2 sigma).",
+              .derived = core::RangeSigmas(5.0)});
     d.Number(&O::verify_max_sigma_m,
              {.key = "verify_max_sigma_m",
               .unit = "m",
               .range = ValueRange::Positive(),
               .doc = "Promotion check: largest standard deviation of the fitted point along its worst direction. 5 "
-                     "cm, the accuracy the agent is tracked to: a VA known worse would pull it."});
+                     "cm, the accuracy the agent is tracked to: a VA known worse would pull it. Derived: 2 range "
+                     "sigmas, so that the VA's error moves its ranges by no more than the noise's 95 % band.",
+              .derived = core::RangeSigmas(2.0)});
     d.Number(&O::verify_far_sigma_per_m,
              {.key = "verify_far_sigma_per_m",
               .range = ValueRange::NonNegative(),
@@ -117,7 +148,9 @@ const core::OptionsDescriptor<DiscoveryOptions>& DiscoveryOptionsDescriptor() {
               .unit = "m",
               .range = ValueRange::Positive(),
               .doc = "RMS limit of the far-VA rule. 2.5 cm: right far VAs fit to about 2 cm; without the limit a false "
-                     "far VA was promoted and a run diverged, and 3 cm was worse on trajectory 1."});
+                     "far VA was promoted and a run diverged, and 3 cm was worse on trajectory 1. Derived: 1.25 range "
+                     "sigmas, a fit about as clean as the range noise alone.",
+              .derived = core::RangeSigmas(1.25)});
     d.Integer(
         &O::resolve_misses,
         {.key = "resolve_misses",
@@ -130,18 +163,24 @@ const core::OptionsDescriptor<DiscoveryOptions>& DiscoveryOptionsDescriptor() {
               .range = ValueRange::Positive(),
               .doc = "Two hypotheses closer than this are the same point (the group already contained a turn) and the "
                      "better-fitting one is kept. 0.3 m."});
-    d.Integer(&O::candidate_timeout_steps,
-              {.key = "candidate_timeout_steps",
-               .unit = "steps",
-               .range = ValueRange::Closed(1.0, 1e6),
-               .doc = "A candidate without a supporting range for this many steps is dropped (the digest's time-out, "
-                      "Sec. 2.10). 20."});
-    d.Integer(&O::candidate_max_age_steps,
-              {.key = "candidate_max_age_steps",
-               .unit = "steps",
-               .range = ValueRange::Closed(1.0, 1e6),
-               .doc = "A candidate still ambiguous after this many steps is dropped: a straight walk never resolves "
-                      "it, and an old pair's evidence comes from positions far behind. 150."});
+    d.Number(&O::candidate_timeout_s,
+             {.key = "candidate_timeout_s",
+              .unit = "s",
+              .range = ValueRange::Positive(),
+              .doc = "A candidate without a supporting range for this long is dropped (the digest's time-out, Sec. "
+                     "2.10). 2 s. Derived: the time to walk 1 m (20 steps at 0.5 m/s and 0.1 s): a path goes out of "
+                     "view with the distance walked, and missed detections alone do not last that long.",
+              .derived = core::WalkingTime(1.0)});
+    d.Number(&O::candidate_max_age_s,
+             {.key = "candidate_max_age_s",
+              .unit = "s",
+              .range = ValueRange::Positive(),
+              .doc = "A candidate still ambiguous after this long is dropped: a straight walk never resolves it, and "
+                     "an old pair's evidence comes from positions far behind. 15 s. Derived: the time to walk 7.5 m, "
+                     "about a room's length (150 steps at 0.5 m/s and 0.1 s).",
+              .derived = core::WalkingTime(7.5)});
+    d.Retired("candidate_timeout_steps", "candidate_timeout_s", "seconds, not steps: the old value times dt_s (20 steps of 0.1 s = 2 s), or leave it out for the default derived from speed_mps");
+    d.Retired("candidate_max_age_steps", "candidate_max_age_s", "seconds, not steps: the old value times dt_s (150 steps of 0.1 s = 15 s), or leave it out for the default derived from speed_mps");
     d.Number(&O::duplicate_radius_m,
              {.key = "duplicate_radius_m",
               .unit = "m",
@@ -184,7 +223,7 @@ void VaDiscovery::RlsUpdate(Hypothesis& h, const Vec2& agent_m, double range_m) 
   h.covariance_m2 = A * h.covariance_m2 * A.transpose() + K * R * K.transpose();
 }
 
-std::vector<bool> VaDiscovery::UpdateCandidates(int step, int anchor_index, const Vec2& agent_m,
+std::vector<bool> VaDiscovery::UpdateCandidates(int step, double t_s, int anchor_index, const Vec2& agent_m,
                                                 std::span<const core::RangeMeasurement> ranges, double cutoff_m) {
   std::vector<bool> used(ranges.size(), false);
   std::vector<std::size_t> mine;
@@ -211,6 +250,7 @@ std::vector<bool> VaDiscovery::UpdateCandidates(int step, int anchor_index, cons
     const auto& z = ranges[static_cast<std::size_t>(assignment[i])];
     used[static_cast<std::size_t>(assignment[i])] = true;
     candidate.last_support_step = step;
+    candidate.last_support_t_s = t_s;
     candidate.samples.push_back({agent_m, z.range_m, z.amplitude});
     // Stage B: each live hypothesis the range supports is RLS-updated; one that fails the cut-off
     // while its sibling passes counts a miss (the mirror image drifts apart after a turn).
@@ -273,7 +313,6 @@ double TruncatedRms(const Vec2& q, const std::vector<DiscoverySample>& samples, 
 }  // namespace
 
 VaDiscovery::Verdict VaDiscovery::Verify(const Candidate& candidate) const {
-  constexpr double kTruncation_m = 0.1;  // residual cap of the mirror comparison
   std::vector<Vec2> positions;
   std::vector<double> ranges;
   for (const auto& s : candidate.samples) {
@@ -292,7 +331,7 @@ VaDiscovery::Verdict VaDiscovery::Verify(const Candidate& candidate) const {
   for (const Vec2& start : starts) {
     if (const auto fit = estimation::FitPointToRanges(positions, ranges, start)) {
       fits.push_back(*fit);
-      scores.push_back(TruncatedRms(fit->position_m, candidate.samples, kTruncation_m));
+      scores.push_back(TruncatedRms(fit->position_m, candidate.samples, options_.verify_residual_cap_m));
     }
   }
   Verdict verdict;
@@ -329,7 +368,7 @@ VaDiscovery::Verdict VaDiscovery::Verify(const Candidate& candidate) const {
   return verdict;
 }
 
-std::vector<DiscoveredVa> VaDiscovery::Promote(int step, int anchor_index) {
+std::vector<DiscoveredVa> VaDiscovery::Promote(int step, double t_s, int anchor_index) {
   std::vector<DiscoveredVa> promoted;
   std::vector<Candidate> kept;
   for (auto& candidate : candidates_) {
@@ -346,8 +385,8 @@ std::vector<DiscoveredVa> VaDiscovery::Promote(int step, int anchor_index) {
       if (hyp.alive && hyp.misses >= options_.resolve_misses) hyp.alive = false;
     }
     const int alive = (h[0].alive ? 1 : 0) + (h[1].alive ? 1 : 0);
-    const bool timed_out = step - candidate.last_support_step > options_.candidate_timeout_steps;
-    const bool too_old = step - candidate.created_step > options_.candidate_max_age_steps;
+    const bool timed_out = Exceeds(t_s - candidate.last_support_t_s, options_.candidate_timeout_s);
+    const bool too_old = Exceeds(t_s - candidate.created_t_s, options_.candidate_max_age_s);
     if (alive == 0 || timed_out || too_old) continue;  // dropped
     const bool ready = static_cast<int>(candidate.samples.size()) >= options_.min_measurements &&
                        CrossExtent(candidate.samples) >= options_.min_turn_m;
@@ -375,12 +414,14 @@ std::vector<DiscoveredVa> VaDiscovery::Promote(int step, int anchor_index) {
   return promoted;
 }
 
-bool VaDiscovery::AddCandidate(int step, int anchor_index, const std::array<Vec2, 2>& starts,
+bool VaDiscovery::AddCandidate(int step, double t_s, int anchor_index, const std::array<Vec2, 2>& starts,
                                std::vector<DiscoverySample> samples, std::span<const Vec2> known_vas_m) {
   Candidate candidate;
   candidate.anchor_index = anchor_index;
   candidate.created_step = step;
   candidate.last_support_step = step;
+  candidate.created_t_s = t_s;
+  candidate.last_support_t_s = t_s;
   int fitting = 0;
   bool duplicate = false;
   for (std::size_t k = 0; k < 2; ++k) {
@@ -418,7 +459,7 @@ bool VaDiscovery::AddCandidate(int step, int anchor_index, const std::array<Vec2
   return true;
 }
 
-void VaDiscovery::UpdateGroups(int step, int anchor_index, const Vec2& agent_m,
+void VaDiscovery::UpdateGroups(int step, double t_s, int anchor_index, const Vec2& agent_m,
                                std::span<const core::RangeMeasurement> ranges, const std::vector<bool>& used,
                                std::span<const Vec2> known_vas_m) {
   // Age out groups that missed too many steps.
@@ -485,14 +526,14 @@ void VaDiscovery::UpdateGroups(int step, int anchor_index, const Vec2& agent_m,
     const auto pair = estimation::RangeBancroft(positions, ranges_m);
     if (!pair) continue;
     const std::array<Vec2, 2> starts = {pair->positions_m[0], pair->positions_m[1]};
-    AddCandidate(step, anchor_index, starts, group.samples, known_vas_m);
+    AddCandidate(step, t_s, anchor_index, starts, group.samples, known_vas_m);
   }
   for (std::size_t g = groups_.size(); g-- > 0;) {
     if (g < remove.size() && remove[g]) groups_.erase(groups_.begin() + static_cast<std::ptrdiff_t>(g));
   }
 }
 
-std::vector<DiscoveredVa> VaDiscovery::Process(int step, int anchor_index, const Vec2& agent_m,
+std::vector<DiscoveredVa> VaDiscovery::Process(int step, double t_s, int anchor_index, const Vec2& agent_m,
                                                const Eigen::Matrix2d& agent_covariance_m2,
                                                std::span<const core::RangeMeasurement> unassociated,
                                                std::span<const Vec2> known_vas_m, double cutoff_m) {
@@ -500,12 +541,12 @@ std::vector<DiscoveredVa> VaDiscovery::Process(int step, int anchor_index, const
   // The agent's std along its worst direction: the largest eigenvalue of its position covariance.
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> agent_eig(agent_covariance_m2, Eigen::EigenvaluesOnly);
   if (!(agent_eig.eigenvalues()(1) <= options_.max_agent_sigma_m * options_.max_agent_sigma_m)) return {};
-  const std::vector<bool> used = UpdateCandidates(step, anchor_index, agent_m, unassociated, cutoff_m);
-  auto promoted = Promote(step, anchor_index);
-  UpdateGroups(step, anchor_index, agent_m, unassociated, used, known_vas_m);
+  const std::vector<bool> used = UpdateCandidates(step, t_s, anchor_index, agent_m, unassociated, cutoff_m);
+  auto promoted = Promote(step, t_s, anchor_index);
+  UpdateGroups(step, t_s, anchor_index, agent_m, unassociated, used, known_vas_m);
   // Stage D'. Points already explained (an active VA of this anchor or a live candidate
   // hypothesis) are not searched for.
-  sweep_.Buffer(step, anchor_index, agent_m, unassociated, used);
+  sweep_.Buffer(t_s, anchor_index, agent_m, unassociated, used);
   if (sweep_.Due(step, anchor_index)) {
     std::vector<Vec2> taken_m(known_vas_m.begin(), known_vas_m.end());
     for (const auto& c : candidates_) {
@@ -515,7 +556,9 @@ std::vector<DiscoveredVa> VaDiscovery::Process(int step, int anchor_index, const
       }
     }
     if (auto find = sweep_.Search(step, anchor_index, taken_m)) {
-      if (AddCandidate(step, anchor_index, find->starts, std::move(find->samples), known_vas_m)) ++sweep_candidates_;
+      if (AddCandidate(step, t_s, anchor_index, find->starts, std::move(find->samples), known_vas_m)) {
+        ++sweep_candidates_;
+      }
     }
   }
   return promoted;

@@ -4,7 +4,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "mirage/core/derived_defaults.h"
 #include "mirage/estimation/init/range_point_fit.h"
+#include "mirage/methods/elapsed_time.h"
 
 namespace mirage::methods::slam {
 
@@ -16,10 +18,13 @@ const core::OptionsDescriptor<SweepOptions>& SweepOptionsDescriptor() {
     d.Boolean(&O::enabled, {.key = "enabled",
                             .doc = "Run the sweep (stage D', mirage): a consensus search for far VAs over the last "
                                    "steps' unexplained ranges."});
-    d.Integer(&O::window_steps, {.key = "window_steps",
-                                 .unit = "steps",
-                                 .range = ValueRange::Closed(3.0, 1e5),
-                                 .doc = "Steps of ranges searched. 60 steps are 3 m of walking at 0.5 m/s and 0.1 s."});
+    d.Number(&O::window_s, {.key = "window_s",
+                            .unit = "s",
+                            .range = ValueRange::Positive(),
+                            .doc = "How far back ranges are searched. 6 s (60 steps of 0.1 s). Derived: the time to "
+                                   "walk 3 m, within which the buffered positions must span min_baseline_m.",
+                            .derived = core::WalkingTime(3.0)});
+    d.Retired("window_steps", "window_s", "seconds, not steps: the old value times dt_s (60 steps of 0.1 s = 6 s), or leave it out for the default derived from speed_mps");
     d.Integer(&O::every_steps,
               {.key = "every_steps",
                .unit = "steps",
@@ -36,7 +41,9 @@ const core::OptionsDescriptor<SweepOptions>& SweepOptionsDescriptor() {
                           .unit = "m",
                           .range = ValueRange::Positive(),
                           .doc = "A range supports a point within this distance of its predicted range: range noise "
-                                 "(1-2 cm) plus the agent's error (2-3 cm). 4 cm."});
+                                 "(1-2 cm) plus the agent's error (2-3 cm). 4 cm. Derived: 2 range sigmas, 95 % of the "
+                                 "VA's ranges (the agent's error over the buffer is mostly absorbed by the point).",
+                          .derived = core::RangeSigmas(2.0)});
     d.Number(&O::min_support_fraction,
              {.key = "min_support_fraction",
               .range = ValueRange::Closed(core::kTinyOption, 1.0),
@@ -57,7 +64,7 @@ void VaSweep::Reset() { buffers_.clear(); }
 
 std::size_t VaSweep::buffered_steps(int anchor_index) const {
   const auto a = static_cast<std::size_t>(anchor_index);
-  return a < buffers_.size() ? buffers_[a].steps.size() : 0;
+  return a < buffers_.size() ? buffers_[a].times_s.size() : 0;
 }
 
 std::size_t VaSweep::buffered_ranges(int anchor_index) const {
@@ -69,17 +76,18 @@ std::size_t VaSweep::buffered_ranges(int anchor_index) const {
   return count;
 }
 
-void VaSweep::Buffer(int step, int anchor_index, const Vec2& agent_m, std::span<const core::RangeMeasurement> ranges,
-                     const std::vector<bool>& used) {
+void VaSweep::Buffer(double t_s, int anchor_index, const Vec2& agent_m,
+                     std::span<const core::RangeMeasurement> ranges, const std::vector<bool>& used) {
   if (!options_.enabled || !agent_m.allFinite()) return;
   const auto anchor = static_cast<std::size_t>(anchor_index);
   if (buffers_.size() <= anchor) buffers_.resize(anchor + 1);
   AnchorBuffer& buffer = buffers_[anchor];
   // Steps older than the window leave from the front.
   const auto old = static_cast<std::ptrdiff_t>(
-      std::find_if(buffer.steps.begin(), buffer.steps.end(), [&](int s) { return step - s < options_.window_steps; }) -
-      buffer.steps.begin());
-  buffer.steps.erase(buffer.steps.begin(), buffer.steps.begin() + old);
+      std::find_if(buffer.times_s.begin(), buffer.times_s.end(),
+                   [&](double s) { return !Reaches(t_s - s, options_.window_s); }) -
+      buffer.times_s.begin());
+  buffer.times_s.erase(buffer.times_s.begin(), buffer.times_s.begin() + old);
   buffer.scans.erase(buffer.scans.begin(), buffer.scans.begin() + old);
   buffer.amplitudes.erase(buffer.amplitudes.begin(), buffer.amplitudes.begin() + old);
   // The ranges no candidate took, sorted (the consensus search looks them up by value).
@@ -96,7 +104,7 @@ void VaSweep::Buffer(int step, int anchor_index, const Vec2& agent_m, std::span<
     scan.ranges_m.push_back(z.range_m);
     amplitudes.push_back(z.amplitude);
   }
-  buffer.steps.push_back(step);
+  buffer.times_s.push_back(t_s);
   buffer.scans.push_back(std::move(scan));
   buffer.amplitudes.push_back(std::move(amplitudes));
 }

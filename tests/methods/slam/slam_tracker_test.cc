@@ -548,7 +548,7 @@ TEST(SlamTracker, ShadowConeWeakensOnlyTheDiscoveredVasBehindABlockedAnchor) {
 // A track on the wrong intersection of the two LOS circles (the mirror image of the truth about
 // the anchors' line, where both LOS ranges fit) with the floor plan's VAs known: the recovery
 // scores each candidate by the VAs visible there and restarts the track at the truth, once a LOS
-// has gone missing (the search runs only for floor_plan_watch_steps after that).
+// has gone missing (the search runs only for floor_plan_watch_s after that).
 struct MirrorOutcome {
   bool relocalized = false;
   double final_error_m = 0.0;
@@ -630,28 +630,29 @@ TEST(SlamTracker, FloorPlanMapRestartsATrackOnTheMirrorIntersectionAfterALosLoss
   EXPECT_GT(disabled.final_error_m, 1.0);
 }
 
-TEST(SlamTracker, FloorPlanSearchEndsFloorPlanWatchStepsAfterTheLastLosMiss) {
+TEST(SlamTracker, FloorPlanSearchEndsFloorPlanWatchSAfterTheLastLosMiss) {
   SlamOptions options = FloorPlanMapOptions();
   // The track is lost from the 11th step on. Steps counted as the tracker does (the k-th call is
   // step k - 1): a miss in the 3rd call is step 2, the loss begins at step 10, and once a
-  // candidate has won, the pending restart keeps the search running until it completes.
+  // candidate has won, the pending restart keeps the search running until it completes. Steps
+  // are 0.1 s apart, so a window of 0.7 s is 7 steps.
   constexpr int kMissCall = 3;
   constexpr int kJumpCall = 11;
 
-  // A window of 7 ends at step 9, one step before the loss: the track stays lost.
-  options.recovery.floor_plan_watch_steps = 7;
+  // A window of 0.7 s ends at step 9, one step before the loss: the track stays lost.
+  options.recovery.floor_plan_watch_s = 0.7;
   const MirrorOutcome expired = RunFromTheMirror(options, kMissCall, kJumpCall);
   EXPECT_FALSE(expired.relocalized);
   EXPECT_GT(expired.final_error_m, 1.0);
 
-  // A window of 8 reaches step 10, the first lost step: the restart completes.
-  options.recovery.floor_plan_watch_steps = 8;
+  // A window of 0.8 s reaches step 10, the first lost step: the restart completes.
+  options.recovery.floor_plan_watch_s = 0.8;
   const MirrorOutcome just_reached = RunFromTheMirror(options, kMissCall, kJumpCall);
   EXPECT_TRUE(just_reached.relocalized);
   EXPECT_LT(just_reached.final_error_m, 0.05);
 
   // With the short window, a miss after the loss restarts it.
-  options.recovery.floor_plan_watch_steps = 7;
+  options.recovery.floor_plan_watch_s = 0.7;
   const MirrorOutcome watched = RunFromTheMirror(options, kJumpCall + 1, kJumpCall);
   EXPECT_TRUE(watched.relocalized);
   EXPECT_LT(watched.final_error_m, 0.05);

@@ -179,15 +179,16 @@ TEST(TrackRecoveryOptions, ValidateNamesEachBadValue) {
   o.follow_gate_m = -1.0;
   o.max_jump_m = 0.0;
   o.min_margin_floor_plan = 0;
-  o.floor_plan_watch_steps = -1;
+  o.floor_plan_watch_s = -1.0;
   o.max_speed_mps = 0.0;
-  EXPECT_EQ(Validate(o).size(), 9u);
+  o.circle_slack_m = 0.0;
+  EXPECT_EQ(Validate(o).size(), 10u);
 }
 
 TEST(TrackRecoveryOptionsDescriptor, AcceptsTheDefaultsAndDescribesEveryMember) {
   test::ExpectDescribesEveryMember(TrackRecoveryOptionsDescriptor(),
-                                   {"enabled", "match_tolerance_m", "los_candidates", "min_margin",
-                                    "min_margin_floor_plan", "floor_plan_watch_steps", "lost_steps", "follow_gate_m",
+                                   {"enabled", "match_tolerance_m", "circle_slack_m", "los_candidates", "min_margin",
+                                    "min_margin_floor_plan", "floor_plan_watch_s", "lost_steps", "follow_gate_m",
                                     "max_jump_m", "max_speed_mps"});
 }
 

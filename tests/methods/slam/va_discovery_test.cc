@@ -73,7 +73,7 @@ Outcome RunWalk(const DiscoveryOptions& options, Covariance covariance_at) {
     std::vector<core::RangeMeasurement> unassociated;
     if (!explained) unassociated.push_back({range_m, std::nullopt});
     const int step = static_cast<int>(k);
-    for (auto& va : discovery.Process(step, 0, agent_m, covariance_at(step), unassociated, active_m, kCutoff_m)) {
+    for (auto& va : discovery.Process(step, 0.1 * step, 0, agent_m, covariance_at(step), unassociated, active_m, kCutoff_m)) {
       active_m.push_back(va.position_m);
       out.promoted.push_back(std::move(va));
       out.promoted_steps.push_back(step);
@@ -155,7 +155,7 @@ std::vector<DiscoveredVa> RunShortWalkToDistantVa(const DiscoveryOptions& option
     const double range_m = (kDistantVa_m - agent_m).norm() + rng.Normal(0.0, range_sigma_m);
     std::vector<core::RangeMeasurement> unassociated;
     if (active_m.empty()) unassociated.push_back({range_m, std::nullopt});
-    for (auto& va : discovery.Process(static_cast<int>(k), 0, agent_m, Isotropic(0.01), unassociated, active_m,
+    for (auto& va : discovery.Process(static_cast<int>(k), 0.1 * static_cast<double>(k), 0, agent_m, Isotropic(0.01), unassociated, active_m,
                                       kCutoff_m)) {
       active_m.push_back(va.position_m);
       promoted.push_back(std::move(va));
@@ -231,7 +231,7 @@ SweepOutcome RunStraightWalk(const DiscoveryOptions& options, bool with_va) {
     const int clutter = rng.Poisson(kClutterPerStep);
     for (int c = 0; c < clutter; ++c) ranges.push_back({rng.Uniform() * kRangeWindow_m, std::nullopt});
     const Eigen::Matrix2d agent_covariance_m2 = Eigen::Matrix2d::Identity() * 0.01 * 0.01;
-    discovery.Process(static_cast<int>(k), 0, agent_m, agent_covariance_m2, ranges, {}, kCutoff_m);
+    discovery.Process(static_cast<int>(k), 0.1 * static_cast<double>(k), 0, agent_m, agent_covariance_m2, ranges, {}, kCutoff_m);
     for (const auto& candidate : discovery.candidates()) {
       const auto own = std::count_if(candidate.samples.begin(), candidate.samples.end(), [](const DiscoverySample& s) {
         return std::abs(s.range_m - (kFarVa_m - s.agent_m).norm()) < 0.04;
@@ -264,7 +264,7 @@ TEST(VaDiscovery, ValidateNamesEachSweepOption) {
     const auto problems = Validate(options);
     return problems.size() == 1 ? problems.front() : std::string("(") + std::to_string(problems.size()) + " problems)";
   };
-  EXPECT_NE(problem_with([](SweepOptions& o) { o.window_steps = 2; }).find("sweep.window_steps"), std::string::npos);
+  EXPECT_NE(problem_with([](SweepOptions& o) { o.window_s = 0.0; }).find("sweep.window_s"), std::string::npos);
   EXPECT_NE(problem_with([](SweepOptions& o) { o.every_steps = 0; }).find("sweep.every_steps"), std::string::npos);
   EXPECT_NE(problem_with([](SweepOptions& o) { o.min_baseline_m = 0.0; }).find("sweep.min_baseline_m"),
             std::string::npos);
@@ -278,9 +278,9 @@ TEST(DiscoveryOptionsDescriptor, AcceptsTheDefaultsAndDescribesEveryMember) {
       DiscoveryOptionsDescriptor(),
       {"enabled", "max_agent_sigma_m", "group_gate_m", "group_max_gap_steps", "group_size", "min_group_baseline_m",
        "max_fit_rms_m", "rls_initial_sigma_m", "rls_range_sigma_m", "min_measurements", "min_turn_m", "verify",
-       "verify_fit_rms_m", "verify_min_inlier_fraction", "verify_mirror_ratio", "verify_max_sigma_m",
+       "verify_fit_rms_m", "verify_min_inlier_fraction", "verify_mirror_ratio", "verify_residual_cap_m", "verify_max_sigma_m",
        "verify_far_sigma_per_m", "verify_far_fit_rms_m", "resolve_misses", "merge_hypotheses_m",
-       "candidate_timeout_steps", "candidate_max_age_steps", "duplicate_radius_m", "sweep"});
+       "candidate_timeout_s", "candidate_max_age_s", "duplicate_radius_m", "sweep"});
 }
 
 }  // namespace

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // The sweep's buffers and schedule: each anchor searched on its own steps, only the last
-// window_steps steps kept, the ranges of a find spent, nothing before the walk spans the minimum
+// window_s seconds kept, the ranges of a find spent, nothing before the walk spans the minimum
 // baseline, non-finite ranges dropped, and Reset forgets everything. The search itself is
 // estimation/init/range_consensus (tested there); the candidates it starts, VaDiscovery's.
 #include "mirage/methods/slam/va_sweep.h"
@@ -36,7 +36,7 @@ Vec2 AgentAt(int step) { return Vec2(0.05 * step, 1.0); }
 void Walk(VaSweep& sweep, int anchor_index, int first, int last, core::Rng& rng, bool with_point = true) {
   for (int step = first; step <= last; ++step) {
     const auto ranges = RangesAt(AgentAt(step), rng, with_point);
-    sweep.Buffer(step, anchor_index, AgentAt(step), ranges, std::vector<bool>(ranges.size(), false));
+    sweep.Buffer(0.1 * step, anchor_index, AgentAt(step), ranges, std::vector<bool>(ranges.size(), false));
   }
 }
 
@@ -65,7 +65,7 @@ TEST(VaSweep, SearchesEachAnchorOnItsOwnSteps) {
 
 TEST(VaSweep, KeepsOnlyTheLastWindowSteps) {
   SweepOptions options;
-  options.window_steps = 20;
+  options.window_s = 2.0;  // 20 steps of 0.1 s
   VaSweep sweep(options, 10, 0.2);
   core::Rng rng(2, 0);
   Walk(sweep, 0, 0, 100, rng);
@@ -108,7 +108,7 @@ TEST(VaSweep, DropsNonFiniteRanges) {
     finite += ranges.size();
     ranges.push_back({std::numeric_limits<double>::quiet_NaN(), std::nullopt});
     ranges.push_back({std::numeric_limits<double>::infinity(), std::nullopt});
-    sweep.Buffer(step, 0, AgentAt(step), ranges, std::vector<bool>(ranges.size(), false));
+    sweep.Buffer(0.1 * step, 0, AgentAt(step), ranges, std::vector<bool>(ranges.size(), false));
   }
   EXPECT_EQ(sweep.buffered_ranges(0), finite);
   const auto found = sweep.Search(40, 0, {});
@@ -127,7 +127,7 @@ TEST(VaSweep, ResetForgetsTheBuffers) {
 }
 
 TEST(SweepOptionsDescriptor, AcceptsTheDefaultsAndDescribesEveryMember) {
-  test::ExpectDescribesEveryMember(SweepOptionsDescriptor(), {"enabled", "window_steps", "every_steps",
+  test::ExpectDescribesEveryMember(SweepOptionsDescriptor(), {"enabled", "window_s", "every_steps",
                                                               "min_baseline_m", "gate_m", "min_support_fraction"});
 }
 

@@ -32,15 +32,16 @@ namespace mirage::methods::mint {
 /// Parameters of the MINT tracker (defaults from Lafer 2014 Tab. 3.1 where it gives them).
 struct MintOptions {
   /// Cut-off distance d_c of the data association (m), in [1e-9, 1e9]. 0.15 m (Tab. 3.1).
+  /// Derived (methods/tracker_options.h): 3 range sigmas plus one step of motion.
   double cutoff_m = 0.15;
   /// Range standard deviation sigma_z used when variance estimation is off (m), in [1e-9, 1e9].
-  /// 0.07 m (Tab. 3.1: sigma_z^2 = 0.0049 m^2).
+  /// 0.07 m (Tab. 3.1: sigma_z^2 = 0.0049 m^2); derived: the scenario's range noise.
   double range_sigma_m = 0.07;
   /// Standard deviation of the initial position sigma_i (m), in [1e-9, 1e9]. 0.1 m (Tab. 3.1:
   /// 0.01 m^2).
   double initial_position_sigma_m = 0.1;
   /// Standard deviation of the initial velocity (m/s), in [1e-9, 1e9]; the filter starts at rest
-  /// [GAP]. 0.5 m/s, the maximum walking speed v_max of Tab. 3.1.
+  /// [GAP]. 0.5 m/s, the maximum walking speed v_max of Tab. 3.1; derived: the walker's speed.
   double initial_velocity_sigma_mps = 0.5;
   /// Highest order of the known VAs used by the tracker, in [0, 6]. 2 (Tab. 3.1).
   int max_order = 2;

@@ -25,7 +25,8 @@ struct RelocalizationOptions {
   /// Detect track loss and relocalize.
   bool enabled = true;
   /// A VA matches when a measured range lies within this distance of its expected range (m), in
-  /// [1e-6, 10]. 5 cm: about 2 sigma of a first-order reflection's range at 5 dB SINR.
+  /// [1e-6, 10]. 5 cm: about 2 sigma of a first-order reflection's range at 5 dB SINR. Derived:
+  /// 2 range sigmas.
   double match_tolerance_m = 0.05;
   /// Highest VA order used for the score, in [0, 6]. 1: first-order reflections are strong
   /// enough to be detected most of the time; second-order ones mostly are not.

@@ -61,13 +61,16 @@ namespace mirage::methods::slam {
 
 /// Parameters of the SLAM tracker.
 struct SlamOptions {
-  /// Cut-off distance d_c of the data association (m), > 0. 0.15 m (Lafer Tab. 3.1).
+  /// Cut-off distance d_c of the data association (m), > 0. 0.15 m (Lafer Tab. 3.1). Derived
+  /// (methods/tracker_options.h): 3 range sigmas plus one step of motion.
   double cutoff_m = 0.15;
-  /// Range standard deviation when variance estimation is off (m), > 0. 0.07 m.
+  /// Range standard deviation when variance estimation is off (m), > 0. 0.07 m; derived: the
+  /// scenario's range noise.
   double range_sigma_m = 0.07;
   /// Standard deviation of the initial position (m), > 0. 0.1 m (Lafer Tab. 3.1).
   double initial_position_sigma_m = 0.1;
-  /// Standard deviation of the initial velocity (m/s), > 0; the filter starts at rest.
+  /// Standard deviation of the initial velocity (m/s), > 0; the filter starts at rest. 0.5 m/s;
+  /// derived: the walker's speed.
   double initial_velocity_sigma_mps = 0.5;
   /// Highest order of the VAs known at the start from the known floor plan, in [0, 6]: 0 = only
   /// the physical anchors (the paper's SLAM), 2 or 3 = the paper's known-VA baseline.
@@ -219,7 +222,7 @@ struct SlamOptions {
   /// was 3 m off within 7 steps, beyond the recovery's max_jump_m, and 19.6 m off at the end.
   /// With the limit it stays within 2.2 m and the recovery restarts it right at step 171.
   /// Seeds 1-30, both configurations: no other run changes, bit for bit (a good track never
-  /// comes near 1.5 m/s).
+  /// comes near 1.5 m/s). Derived: 3 times the walker's speed (1.5 m/s at 0.5 m/s).
   double max_speed_mps = 1.5;
   /// Online variance estimation per VA (Lafer Sec. 3.6 / Leitinger Sec. III-C).
   estimation::RangeVarianceOptions variance;
@@ -366,8 +369,8 @@ class SlamTracker {
   [[nodiscard]] std::vector<estimation::BlockKey> DiscoveredVaBlocks() const;
   // Marks the anchors without an unfiltered LOS pairing among `pairings` (Entry::los_missed): the
   // pairings of stage 1, or of the joint association without reassociate. Remembers the step of
-  // such a miss (last_los_miss_step_, the recovery's watch window).
-  void NoteLosMisses(const std::vector<Pairing>& pairings);
+  // such a miss, at time t_s (last_los_miss_t_s_, the recovery's watch window).
+  void NoteLosMisses(const std::vector<Pairing>& pairings, double t_s);
   // Whether the anchor's LOS found no range at this step's stage 1 (Entry::los_missed).
   [[nodiscard]] bool LosMissed(int anchor_index) const;
   // Shadow cone: positions of the anchors whose LOS was missed at this step.
@@ -417,7 +420,7 @@ class SlamTracker {
     /// An anchor whose LOS found no range at stage 1: read at the next step's stage 1 (LOS
     /// re-acquisition) and, once stage 1 has set it, at this step's stage 2 (shadow cone,
     /// blocked_amplitude_probability). Without reassociate it is set from the joint association,
-    /// where only the recovery's watch window uses it (through last_los_miss_step_).
+    /// where only the recovery's watch window uses it (through last_los_miss_t_s_).
     bool los_missed = false;
     /// The mean NIS of the last updates (SlamOptions::nis_window_updates): the factor on the range
     /// variance of the next one.
@@ -437,7 +440,7 @@ class SlamTracker {
   estimation::State state_;
   std::vector<Entry> map_;
   int step_ = 0;
-  int last_los_miss_step_ = -1;  // the last step at which an anchor's LOS found no range
+  std::optional<double> last_los_miss_t_s_;  // the last time an anchor's LOS found no range (s)
   int next_discovered_id_ = kFirstDiscoveredVaId;
 };
 

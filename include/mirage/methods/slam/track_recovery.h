@@ -41,7 +41,13 @@ struct TrackRecoveryOptions {
   bool enabled = true;
   /// A map point matches when a measured range lies within this distance of its expected range
   /// (m), > 0. 5 cm: about 2 sigma of a first-order reflection's range at 5 dB SINR, as in MINT.
+  /// Derived: 2 range sigmas.
   double match_tolerance_m = 0.05;
+  /// Two LOS circles that miss each other by less than this still give a candidate, the point
+  /// between them (m), > 0: range noise and a few centimetres of detection bias can separate
+  /// circles that should touch. 5 cm. Derived: 2 sigma of the gap, a sum of two range errors,
+  /// 2 sqrt(2) range sigmas.
+  double circle_slack_m = 0.05;
   /// Measured ranges of each anchor, earliest first, tried as its LOS, >= 1. 3: the LOS is the
   /// first range unless a clutter or noise peak came before it.
   int los_candidates = 3;
@@ -55,18 +61,19 @@ struct TrackRecoveryOptions {
   /// room, seeds 1-9, 450 known-VA runs: with 4 only the two lost runs (seeds 5 and 9) restart;
   /// with 2 good tracks restart too (8 times on seeds 4 and 7; one left with 0.42 m rmse).
   int min_margin_floor_plan = 4;
-  /// With the floor plan's VAs, the search runs only within this many steps after a step at which
-  /// an anchor's LOS found no range (at stage 1, or in the joint association without the
-  /// tracker's reassociate), and while a pending candidate's chain continues, >= 0 (0: the miss
-  /// step only). Ray tracing every candidate costs about 110 us per step, and both lost known-VA
-  /// tracks began with a LOS lost at a corner. 10 steps: both restart, no good track restarts
-  /// (seeds 1-9); searching at every step after the first miss restarts one good track more
-  /// (seed 5, harmlessly).
-  int floor_plan_watch_steps = 10;
+  /// With the floor plan's VAs, the search runs only within this time after a step at which an
+  /// anchor's LOS found no range (at stage 1, or in the joint association without the tracker's
+  /// reassociate), and while a pending candidate's chain continues (s), >= 0 (0: the miss step
+  /// only). Ray tracing every candidate costs about 110 us per step, and both lost known-VA
+  /// tracks began with a LOS lost at a corner. 1 s (10 steps of 0.1 s): both restart, no good track
+  /// restarts (seeds 1-9); searching at every step after the first miss restarts one good track
+  /// more (seed 5, harmlessly). Derived: the time to walk 0.5 m, past the corner.
+  double floor_plan_watch_s = 1.0;
   /// Consecutive steps at which a candidate must win before the restart, >= 1.
   int lost_steps = 3;
   /// The winning candidates of consecutive steps must lie within this distance of one another
-  /// (m), > 0: a walker's step (0.05 m at 0.5 m/s and 10 Hz) plus the candidates' scatter.
+  /// (m), > 0: a walker's step (0.05 m at 0.5 m/s and 10 Hz) plus the candidates' scatter. 0.3 m.
+  /// Derived: one step of motion plus the 0.25 m of scatter.
   double follow_gate_m = 0.3;
   /// Candidates farther than this from the estimate are not considered (m), > 0. 3 m: a track
   /// that settled on the mirror image of the two-anchor geometry is twice its distance from the
@@ -80,7 +87,9 @@ struct TrackRecoveryOptions {
   /// at 2.2 m/s (within follow_gate_m at every step) restarted a track that was 3 cm off; the
   /// track then followed clutter at that speed, 40 m off by the end, and max_jump_m kept every
   /// later candidate out. The restarts of good chains (seeds 1-27 anchors only, 1-15 known VAs)
-  /// moved at 0.42-0.99 m/s. With lost_steps 1 there is no chain, and no limit.
+  /// moved at 0.42-0.99 m/s. With lost_steps 1 there is no chain, and no limit. Not derived from
+  /// the walker's speed: the chain's speed from its first step to its last includes the
+  /// candidates' scatter over those few steps, which at a slow walk is far above the walk itself.
   double max_speed_mps = 1.5;
 };
 
@@ -102,9 +111,9 @@ int CountMatches(const Vec2& p_m, std::span<const MapPoint> map, std::span<const
 
 /// Intersections of the LOS circles of every pair of anchors, each anchor's first
 /// `los_candidates` ranges tried as its LOS radius. Circles that miss each other by less than
-/// 5 cm (noise) give the point between them.
+/// slack_m (noise; TrackRecoveryOptions::circle_slack_m) give the point between them.
 std::vector<Vec2> LosCandidates(std::span<const MapPoint> anchors, std::span<const core::AnchorRanges> measurements,
-                                int los_candidates);
+                                int los_candidates, double slack_m = TrackRecoveryOptions{}.circle_slack_m);
 
 /// Where to restart a lost track.
 struct Restart {

@@ -28,8 +28,10 @@ namespace mirage::methods::slam {
 struct SweepOptions {
   /// Run the sweep at all.
   bool enabled = true;
-  /// Steps of ranges searched (>= 3): 60 steps are 3 m of walking at 0.5 m/s and 0.1 s.
-  int window_steps = 60;
+  /// How far back ranges are searched (s), > 0: 6 s, 60 steps of 0.1 s. Derived: the time to walk
+  /// 3 m (the far VA must be seen from a baseline of min_baseline_m within it; the steps of that
+  /// walk, however many, are buffered).
+  double window_s = 6.0;
   /// The sweep runs for an anchor every this many steps (>= 1), the anchors on different steps.
   /// A search costs about 130 us at 15 unexplained ranges per step (BM_RangeConsensus); 10
   /// halves the sweep's cost for p90 0-0.3 cm worse in the seminar room.
@@ -39,7 +41,8 @@ struct SweepOptions {
   /// be half of it apart.
   double min_baseline_m = 1.0;
   /// A range supports a point if within this distance of its predicted range (m), > 0: range
-  /// noise (1-2 cm) plus the agent's error (about 2-3 cm).
+  /// noise (1-2 cm) plus the agent's error (about 2-3 cm). Derived: 2 range sigmas (95 % of the
+  /// VA's ranges support it).
   double gate_m = 0.04;
   /// Smallest fraction of the buffered steps that must support a point, in (0, 1]. Diffuse
   /// multipath and clutter put about one range per metre of range window: a wrong point collects
@@ -71,10 +74,10 @@ class VaSweep {
   /// new VA (the discovery's duplicate radius).
   VaSweep(const SweepOptions& options, int min_measurements, double exclusion_radius_m);
 
-  /// Keeps the ranges of anchor_index at `step` that no candidate took (used[j] false) with the
-  /// agent position; steps older than window_steps leave the buffer. Non-finite ranges are
-  /// dropped.
-  void Buffer(int step, int anchor_index, const Vec2& agent_m, std::span<const core::RangeMeasurement> ranges,
+  /// Keeps the ranges of anchor_index at time t_s (s) that no candidate took (used[j] false) with
+  /// the agent position; steps window_s or more before t_s leave the buffer. Non-finite ranges
+  /// are dropped.
+  void Buffer(double t_s, int anchor_index, const Vec2& agent_m, std::span<const core::RangeMeasurement> ranges,
               const std::vector<bool>& used);
 
   /// True at the steps the sweep runs for this anchor ((step + anchor_index) % every_steps == 0;
@@ -99,7 +102,7 @@ class VaSweep {
   // One anchor's buffered steps, oldest first, in parallel vectors (the scans are handed to the
   // consensus search as they are).
   struct AnchorBuffer {
-    std::vector<int> steps;
+    std::vector<double> times_s;
     std::vector<estimation::RangeScan> scans;                    // agent position, ranges sorted
     std::vector<std::vector<std::optional<double>>> amplitudes;  // of scans[k].ranges_m, same order
   };
