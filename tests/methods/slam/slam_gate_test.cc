@@ -1,0 +1,63 @@
+// SPDX-License-Identifier: MIT
+// SLAM's default-on innovation gate (SlamOptions::innovation_gate_chi2, a mirage addition to the
+// cut-off assignment of Leitinger et al. Eq. 10-11): with the floor plan's VAs known, a range
+// inside d_c but far outside its innovation variance (agent, VA and range parts) is never
+// associated, so the estimate is what it would be without that range; with the gate off the same
+// range is associated and pulls the agent and the VA.
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "methods/mint/square_room.h"
+#include "mirage/methods/slam/slam_tracker.h"
+
+namespace mirage::methods::slam {
+namespace {
+
+Vec2 MapPosition(const SlamTracker& tracker, int va_id) {
+  for (const auto& va : tracker.Map()) {
+    if (va.id == va_id) return va.position_m;
+  }
+  return Vec2::Constant(1e9);
+}
+
+TEST(SlamTracker, DefaultInnovationGateKeepsARangeInsideTheCutoffOutOfTheUpdate) {
+  // The first-order VAs known, 1 cm ranges and R right (variance estimation off, sigma 1 cm),
+  // so after 20 steps the VA is in the state and its range known to a few cm; at step 21 its
+  // range is 10 cm long: inside d_c = 15 cm, far outside the 3-sigma gate. It has no other range
+  // within 0.3 m.
+  const auto plan = mint::testing::EmptySquareRoom();
+  const auto vas = mint::testing::SquareRoomVas(plan, 1);
+  const int va = mint::testing::IsolatedReflection(vas, plan, 0, Vec2(2.55, 2.0), 0.3);
+  ASSERT_GE(va, 0);
+  struct Outcome {
+    SlamStepResult with, without;   // the epoch with the outlier, and without its range
+    Vec2 va_with_m, va_without_m;  // the outlier's VA after each
+  };
+  const auto run = [&](double gate_chi2) {
+    SlamOptions options;
+    options.prior_max_order = 1;
+    options.discovery.enabled = false;
+    options.variance.enabled = false;
+    options.range_sigma_m = 0.01;
+    options.innovation_gate_chi2 = gate_chi2;
+    SlamTracker tracker(options, vas, plan, 0.01 * std::sqrt(10.0));
+    SlamTracker twin = tracker;
+    const auto [with, without] = mint::testing::StepWithAndWithoutOutlier(tracker, twin, vas, plan, va, 0.10);
+    return Outcome{with, without, MapPosition(tracker, va), MapPosition(twin, va)};
+  };
+
+  const Outcome gated = run(SlamOptions{}.innovation_gate_chi2);
+  EXPECT_FALSE(mint::testing::Associated(gated.with, va));
+  EXPECT_LT((gated.with.position_m - gated.without.position_m).norm(), 1e-9) << "the gated range changed the estimate";
+  EXPECT_LT((gated.va_with_m - gated.va_without_m).norm(), 1e-9) << "the gated range moved its VA";
+
+  const Outcome open = run(0.0);
+  EXPECT_TRUE(mint::testing::Associated(open.with, va));
+  EXPECT_GT((open.with.position_m - open.without.position_m).norm(), 0.01)
+      << "without the gate the 10 cm range pulls the estimate";
+  EXPECT_GT((open.va_with_m - open.va_without_m).norm(), 0.03) << "and its VA";
+}
+
+}  // namespace
+}  // namespace mirage::methods::slam
