@@ -1,0 +1,75 @@
+// SPDX-License-Identifier: MIT
+// The H that SLAM stacks for its update (Leitinger et al. Eq. 16, current rows: u^T in the
+// agent's position columns, -u^T in the columns of the VA when it is in the state, zero
+// elsewhere) against central differences of the range written out as plain geometry: the
+// distance from the state's agent position to the state's VA position, or to the fixed anchor.
+// Both maps: the floor plan's VAs (the known-VA baseline) and VAs discovered from the anchors.
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "estimation/jacobian_check.h"
+#include "methods/mint/square_room.h"
+#include "mirage/geometry/trajectory.h"
+#include "mirage/methods/slam/slam_tracker.h"
+
+namespace mirage::methods::slam {
+namespace {
+
+namespace blocks = estimation::blocks;
+
+// Walks `steps` steps of a loop with three corners on ranges of the VAs up to order 2, then checks
+// the rows of the last step's associations at the tracker's state.
+void ExpectAssembledHMatches(const SlamOptions& options, int known_order, int steps) {
+  const auto plan = mint::testing::SquareRoomWithPillar();
+  const auto known = mint::testing::SquareRoomVas(plan, known_order);
+  const auto truth = mint::testing::SquareRoomVas(plan, 2);
+  mint::testing::MeasurementModel model;
+  model.max_order = 2;
+  SlamTracker tracker(options, known, plan, 0.01 * std::sqrt(10.0));
+  const std::vector<Vec2> waypoints{Vec2(1.5, 1.5), Vec2(4.0, 1.5), Vec2(4.0, 4.5), Vec2(1.5, 4.5)};
+  const auto samples = geometry::SampleTrajectory(waypoints, 0.5, 0.1);
+  tracker.Initialize(samples.front().t_s, samples.front().position_m);
+  core::Rng rng(12, 0);
+  SlamStepResult step;
+  for (std::size_t k = 1; k <= static_cast<std::size_t>(steps); ++k) {
+    step = tracker.Step(samples[k].t_s, mint::testing::MeasureRanges(truth, plan, samples[k].position_m, model, rng));
+  }
+  const estimation::State& state = tracker.state();
+  std::vector<estimation::MeasurementRow> rows;
+  std::vector<int> va_ids;
+  int in_state = 0;
+  for (const auto& a : step.associations) {
+    rows.push_back(*tracker.VaRow(state, a.va_id, a.variance_m2));
+    va_ids.push_back(a.va_id);
+    if (state.layout().Find(estimation::BlockKey(blocks::kVirtualAnchor, a.va_id))) ++in_state;
+  }
+  ASSERT_GE(in_state, 4) << "rows with VA columns";
+  ASSERT_GT(rows.size(), static_cast<std::size_t>(in_state)) << "and the anchors' LOS rows without";
+  ASSERT_GE(step.state_vas, in_state);
+
+  const auto predict = [&](const estimation::State& s, std::size_t i) {
+    const Vec2 p_m = s.Mean(estimation::BlockKey(blocks::kPosition, 0));
+    const estimation::BlockKey va_key(blocks::kVirtualAnchor, va_ids[i]);
+    if (s.layout().Find(va_key)) return (p_m - Vec2(s.Mean(va_key))).norm();
+    // Not in the state: a physical anchor (an order-0 VA of the known set), exact and fixed.
+    EXPECT_EQ(known[va_ids[i]].order, 0) << "VA " << va_ids[i] << " is neither in the state nor an anchor";
+    return (p_m - mint::testing::TwoAnchors()[static_cast<std::size_t>(known[va_ids[i]].anchor_index)]).norm();
+  };
+  estimation::testing::ExpectRowsMatchCentralDifferences(state, rows, predict, 1e-6, 1e-7);
+}
+
+TEST(SlamTracker, AssembledJacobianMatchesCentralDifferencesWithTheFloorPlansVas) {
+  SlamOptions options;
+  options.prior_max_order = 2;
+  ExpectAssembledHMatches(options, 2, 40);
+}
+
+TEST(SlamTracker, AssembledJacobianMatchesCentralDifferencesWithDiscoveredVas) {
+  SlamOptions options;  // the anchors alone at the start
+  options.prior_visibility = false;
+  ExpectAssembledHMatches(options, 0, 160);
+}
+
+}  // namespace
+}  // namespace mirage::methods::slam
