@@ -6,7 +6,9 @@
 // mirrored at the walls (moved by their offsets in the state), then its distance to the receive
 // antenna. Three agents, all three kinds of link (self, relative, from a fixed anchor), first- and
 // second-order paths, a state after some steps (velocities, cross-covariances and wall offsets
-// not zero).
+// not zero) and random states near it.
+#include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -46,6 +48,19 @@ double PathLength(const estimation::State& s, const Link& link, const geometry::
   return (rx_m - methods::testing::ImageOf(tx_m, lines)).norm();
 }
 
+// The provided plan with each wall moved along its normal by its offset in s (CurrentPlan at s).
+geometry::FloorPlan PlanAt(const estimation::State& s) {
+  std::vector<geometry::Wall> walls = testing::Room().walls();
+  for (std::size_t w = 0; w < walls.size(); ++w) {
+    const double offset_m =
+        s.mean()(s.layout().At(estimation::BlockKey(blocks::kWallOffset, static_cast<int>(w))).mean_offset);
+    const Vec2 shift_m = offset_m * geometry::WallNormal(walls[w]);
+    walls[w].start_m += shift_m;
+    walls[w].end_m += shift_m;
+  }
+  return geometry::FloorPlan(walls, {});
+}
+
 TEST(CoopTracker, AssembledJacobianMatchesCentralDifferences) {
   // Three agents walking for 8 steps in a room whose west wall is 3 cm east of the provided one:
   // the filter moves the wall offsets off zero.
@@ -62,26 +77,42 @@ TEST(CoopTracker, AssembledJacobianMatchesCentralDifferences) {
   }
   ASSERT_GT(std::abs(tracker.WallOffset(3)), 1e-3);
 
-  // The rows of every link's expected paths at the state, as Step builds them.
   const estimation::State& state = tracker.state();
   std::vector<estimation::MeasurementRow> rows;
   std::vector<std::pair<Link, geometry::WallSequence>> paths;
-  int second_order = 0;
-  for (std::size_t l = 0; l < tracker.links().size(); ++l) {
-    const Link& link = tracker.links()[l];
-    for (const ExpectedPath& path : tracker.ExpectedPaths(static_cast<int>(l), Agents(state), tracker.CurrentPlan())) {
-      rows.push_back(tracker.JacobianRow(link, path, 1e-4));
-      paths.emplace_back(link, path.walls);
-      if (path.walls.size() == 2) ++second_order;
-    }
-  }
-  ASSERT_GE(rows.size(), 40u);
-  ASSERT_GE(second_order, 10);
-
+  // The rows of every link's expected paths, as Step builds them, at the tracker's state and at
+  // three random states within ~10 cm (cm/s) of it: the paths that exist there on the walls moved
+  // by the state's offsets. The tolerance is relative to the largest entry: direction cosines for
+  // the agents (|.| <= 1) and 2 cos(angle of incidence) for a wall's offset (Eq. 17: |.| <= 2). With
+  // h = 1e-6 the central difference's truncation error is h^2/6 |d^3 r/dx^3| <= h^2 / d^2 (1e-12
+  // at d = 1 m; the antennas of a self link are 5 cm apart but its paths are >= 1 m long) and its
+  // rounding error eps d / h (4e-9 at d = 20 m): 1e-7 x 2 leaves a margin of 50, while a wrong
+  // sign, a wall column missing or a factor 2 lost is off by orders of magnitude more.
+  constexpr double kStep = 1e-6;
+  constexpr double kRelativeTolerance = 1e-7;
+  constexpr double kLargestEntry = 2.0;
   const auto predict = [&](const estimation::State& s, std::size_t i) {
     return PathLength(s, paths[i].first, paths[i].second);
   };
-  estimation::testing::ExpectRowsMatchCentralDifferences(state, rows, predict, 1e-6, 1e-7);
+  core::Rng perturb(5, 0);
+  for (int trial = 0; trial < 4; ++trial) {
+    const estimation::State s = trial == 0 ? state : estimation::testing::RandomNearby(state, 0.1, perturb);
+    rows.clear();
+    paths.clear();
+    int second_order = 0;
+    for (std::size_t l = 0; l < tracker.links().size(); ++l) {
+      const Link& link = tracker.links()[l];
+      for (const ExpectedPath& path : tracker.ExpectedPaths(static_cast<int>(l), Agents(s), PlanAt(s))) {
+        rows.push_back(tracker.JacobianRow(link, path, 1e-4));
+        paths.emplace_back(link, path.walls);
+        if (path.walls.size() == 2) ++second_order;
+      }
+    }
+    ASSERT_GE(rows.size(), 40u) << "state " << trial;
+    ASSERT_GE(second_order, 10) << "state " << trial;
+    estimation::testing::ExpectRowsMatchCentralDifferences(s, rows, predict, kStep, kRelativeTolerance * kLargestEntry,
+                                                           "state " + std::to_string(trial));
+  }
 }
 
 }  // namespace

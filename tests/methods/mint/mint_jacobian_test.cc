@@ -2,7 +2,8 @@
 // The H that MINT stacks for its update (Lafer 2014 Eq. 3.19: one row per associated range,
 // (p - a_i)^T / d_i in the position columns, zero in the velocity columns) against central
 // differences of the range written out as plain geometry: the agent's distance to the anchor
-// mirrored at the VA's walls.
+// mirrored at the VA's walls. At the tracker's state after a walk and at random states near it.
+#include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -44,15 +45,17 @@ TEST(MintTracker, AssembledJacobianMatchesCentralDifferences) {
     step = tracker.Step(samples[k].t_s, testing::MeasureRanges(vas, plan, samples[k].position_m, model, rng));
   }
   const estimation::State& state = tracker.state();
-  std::vector<estimation::MeasurementRow> rows;
+  std::vector<int> va_ids;
+  std::vector<double> variances_m2;
   std::vector<Vec2> va_m;
   bool second_order = false;
   for (const auto& a : step.associations) {
-    rows.push_back(*tracker.VaRow(state, a.va_id, a.variance_m2));
+    va_ids.push_back(a.va_id);
+    variances_m2.push_back(a.variance_m2);
     va_m.push_back(MirroredVa(vas[a.va_id]));
     second_order = second_order || vas[a.va_id].order == 2;
   }
-  ASSERT_GE(rows.size(), 8u);
+  ASSERT_GE(va_ids.size(), 8u);
   ASSERT_TRUE(second_order);
   ASSERT_GT(state.Mean(estimation::BlockKey(estimation::blocks::kVelocity, 0)).norm(), 0.1);
 
@@ -60,7 +63,23 @@ TEST(MintTracker, AssembledJacobianMatchesCentralDifferences) {
     const Vec2 p_m = s.Mean(estimation::BlockKey(estimation::blocks::kPosition, 0));
     return (p_m - va_m[i]).norm();
   };
-  estimation::testing::ExpectRowsMatchCentralDifferences(state, rows, predict, 1e-6, 1e-7);
+  // The rows of the last step's associations, as Update builds them, at the tracker's state and at
+  // three random states within ~0.2 m (m/s) of it. The tolerance is relative to the largest entry
+  // (direction cosines: |H_ij| <= 1). With h = 1e-6 the central difference's truncation error is
+  // h^2/6 |d^3 r/dx^3| <= h^2 / d^2 (1e-12 at d = 1 m) and its rounding error eps d / h (2e-9 at
+  // d = 10 m): 1e-7 leaves a margin of 50, while a wrong sign, a wrong VA or a velocity column not
+  // zero is off by orders of magnitude more.
+  constexpr double kStep = 1e-6;
+  constexpr double kRelativeTolerance = 1e-7;
+  constexpr double kLargestEntry = 1.0;
+  core::Rng perturb(3, 0);
+  for (int trial = 0; trial < 4; ++trial) {
+    const estimation::State s = trial == 0 ? state : estimation::testing::RandomNearby(state, 0.2, perturb);
+    std::vector<estimation::MeasurementRow> rows;
+    for (std::size_t i = 0; i < va_ids.size(); ++i) rows.push_back(*tracker.VaRow(s, va_ids[i], variances_m2[i]));
+    estimation::testing::ExpectRowsMatchCentralDifferences(s, rows, predict, kStep, kRelativeTolerance * kLargestEntry,
+                                                           "state " + std::to_string(trial));
+  }
 }
 
 }  // namespace

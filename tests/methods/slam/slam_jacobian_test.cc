@@ -3,7 +3,9 @@
 // agent's position columns, -u^T in the columns of the VA when it is in the state, zero
 // elsewhere) against central differences of the range written out as plain geometry: the
 // distance from the state's agent position to the state's VA position, or to the fixed anchor.
-// Both maps: the floor plan's VAs (the known-VA baseline) and VAs discovered from the anchors.
+// Both maps: the floor plan's VAs (the known-VA baseline) and VAs discovered from the anchors; at
+// the tracker's state after a walk and at random states near it.
+#include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -36,16 +38,16 @@ void ExpectAssembledHMatches(const SlamOptions& options, int known_order, int st
     step = tracker.Step(samples[k].t_s, mint::testing::MeasureRanges(truth, plan, samples[k].position_m, model, rng));
   }
   const estimation::State& state = tracker.state();
-  std::vector<estimation::MeasurementRow> rows;
   std::vector<int> va_ids;
+  std::vector<double> variances_m2;
   int in_state = 0;
   for (const auto& a : step.associations) {
-    rows.push_back(*tracker.VaRow(state, a.va_id, a.variance_m2));
     va_ids.push_back(a.va_id);
+    variances_m2.push_back(a.variance_m2);
     if (state.layout().Find(estimation::BlockKey(blocks::kVirtualAnchor, a.va_id))) ++in_state;
   }
   ASSERT_GE(in_state, 4) << "rows with VA columns";
-  ASSERT_GT(rows.size(), static_cast<std::size_t>(in_state)) << "and the anchors' LOS rows without";
+  ASSERT_GT(va_ids.size(), static_cast<std::size_t>(in_state)) << "and the anchors' LOS rows without";
   ASSERT_GE(step.state_vas, in_state);
 
   const auto predict = [&](const estimation::State& s, std::size_t i) {
@@ -56,7 +58,23 @@ void ExpectAssembledHMatches(const SlamOptions& options, int known_order, int st
     EXPECT_EQ(known[va_ids[i]].order, 0) << "VA " << va_ids[i] << " is neither in the state nor an anchor";
     return (p_m - mint::testing::TwoAnchors()[static_cast<std::size_t>(known[va_ids[i]].anchor_index)]).norm();
   };
-  estimation::testing::ExpectRowsMatchCentralDifferences(state, rows, predict, 1e-6, 1e-7);
+  // The rows of the last step's associations, as Linearize builds them for both stages, at the
+  // tracker's state and at three random states within ~0.2 m (m/s) of it. The tolerance is
+  // relative to the largest entry (direction cosines: |H_ij| <= 1). With h = 1e-6 the central
+  // difference's truncation error is h^2/6 |d^3 r/dx^3| <= h^2 / d^2 (1e-12 at d = 1 m) and its
+  // rounding error eps d / h (2e-9 at d = 10 m): 1e-7 leaves a margin of 50, while a wrong sign, a
+  // VA column missing or in the wrong block is off by orders of magnitude more.
+  constexpr double kStep = 1e-6;
+  constexpr double kRelativeTolerance = 1e-7;
+  constexpr double kLargestEntry = 1.0;
+  core::Rng perturb(4, 0);
+  for (int trial = 0; trial < 4; ++trial) {
+    const estimation::State s = trial == 0 ? state : estimation::testing::RandomNearby(state, 0.2, perturb);
+    std::vector<estimation::MeasurementRow> rows;
+    for (std::size_t i = 0; i < va_ids.size(); ++i) rows.push_back(*tracker.VaRow(s, va_ids[i], variances_m2[i]));
+    estimation::testing::ExpectRowsMatchCentralDifferences(s, rows, predict, kStep, kRelativeTolerance * kLargestEntry,
+                                                           "state " + std::to_string(trial));
+  }
 }
 
 TEST(SlamTracker, AssembledJacobianMatchesCentralDifferencesWithTheFloorPlansVas) {
