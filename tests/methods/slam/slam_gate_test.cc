@@ -60,11 +60,13 @@ TEST(SlamTracker, DefaultInnovationGateKeepsARangeInsideTheCutoffOutOfTheUpdate)
   EXPECT_FALSE(mint::testing::Associated(gross.with, va));
   EXPECT_LT((gross.with.position_m - gross.without.position_m).norm(), 1e-9) << "the 3 m range changed the estimate";
 
+  // Without the gate the 10 cm innovation is associated and, through the gains, moves the agent
+  // by 1.4 cm and the VA by 3.1 cm; the bounds are a third of that, far from the gated 1e-9.
   const Outcome open = run(0.0, 0.10);
   EXPECT_TRUE(mint::testing::Associated(open.with, va));
-  EXPECT_GT((open.with.position_m - open.without.position_m).norm(), 0.01)
+  EXPECT_GT((open.with.position_m - open.without.position_m).norm(), 0.005)
       << "without the gate the 10 cm range pulls the estimate";
-  EXPECT_GT((open.va_with_m - open.va_without_m).norm(), 0.03) << "and its VA";
+  EXPECT_GT((open.va_with_m - open.va_without_m).norm(), 0.01) << "and its VA";
 }
 
 }  // namespace
