@@ -13,6 +13,7 @@
 #include <Eigen/Core>
 #include <gtest/gtest.h>
 
+#include "mirage/core/rng.h"
 #include "mirage/estimation/covariance_ops.h"
 #include "mirage/estimation/ekf_update.h"
 #include "mirage/estimation/measurement_row.h"
@@ -50,6 +51,17 @@ inline double ExpectRowsMatchCentralDifferences(const State& state, std::span<co
     }
   }
   return worst;
+}
+
+/// `state` moved by an independent N(0, sigma^2) step in every tangent coordinate (through its
+/// boxplus, CovarianceOps::Correct): a random state near a realistic one, at which the methods'
+/// Jacobian tests check their rows again.
+inline State RandomNearby(const State& state, double sigma, core::Rng& rng) {
+  Eigen::VectorXd dx(state.dimension());
+  for (int j = 0; j < state.dimension(); ++j) dx(j) = sigma * rng.Normal();
+  State out = state;
+  CovarianceOps::Correct(out, dx);
+  return out;
 }
 
 }  // namespace mirage::estimation::testing

@@ -141,14 +141,13 @@ estimation::UpdateResult MintTracker::Update(estimation::State& state, const std
                                              const std::vector<double>& variances_m2,
                                              const std::vector<std::optional<double>>& sinrs,
                                              std::vector<MintAssociation>* associations) const {
-  const estimation::Block position = state.layout().At(kPosition);
   std::vector<estimation::MeasurementRow> rows;  // Eq. (3.18), (3.19)
   std::vector<double> innovations;
   rows.reserve(pairings.size());
   innovations.reserve(pairings.size());
   for (std::size_t k = 0; k < pairings.size(); ++k) {
     const Pairing& p = pairings[k];
-    const auto row = estimation::VaRangeRow(state, position, (*vas_)[p.va_id].position_m, std::nullopt, variances_m2[k]);
+    const auto row = VaRow(state, p.va_id, variances_m2[k]);
     if (!row) continue;
     rows.push_back(*row);
     innovations.push_back(p.measurement->range_m - row->predicted);  // Eq. (3.20)
@@ -165,6 +164,12 @@ estimation::UpdateResult MintTracker::Update(estimation::State& state, const std
     }
   }
   return estimation::Update(state, rows, innovations);
+}
+
+std::optional<estimation::MeasurementRow> MintTracker::VaRow(const estimation::State& state, int va_id,
+                                                             double variance_m2) const {
+  return estimation::VaRangeRow(state, state.layout().At(kPosition), (*vas_)[va_id].position_m, std::nullopt,
+                                variance_m2);
 }
 
 double MintTracker::CurrentVariance(int va_id) const {

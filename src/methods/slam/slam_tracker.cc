@@ -504,19 +504,30 @@ SlamTracker::Reference SlamTracker::StageOne(const std::vector<Pairing>& los,
   return reference;
 }
 
+std::optional<estimation::MeasurementRow> SlamTracker::VaRow(const estimation::State& state, int va_id,
+                                                             double variance_m2) const {
+  const auto entry = std::find_if(map_.begin(), map_.end(), [&](const Entry& e) { return e.va.id == va_id; });
+  if (entry == map_.end()) return std::nullopt;
+  return MapRow(state, static_cast<std::size_t>(entry - map_.begin()), variance_m2);
+}
+
+std::optional<estimation::MeasurementRow> SlamTracker::MapRow(const estimation::State& state, std::size_t map_index,
+                                                              double variance_m2) const {
+  // Leitinger Eq. (16), a current row: the agent's position and the VA's block when it has one.
+  const BlockKey key(blocks::kVirtualAnchor, map_[map_index].va.id);
+  const auto block = state.layout().Find(key);
+  const Vec2 va_m = block ? Vec2(state.mean().segment<2>(block->mean_offset)) : map_[map_index].prior_m;
+  return estimation::VaRangeRow(state, state.layout().At(kPosition), va_m, block, variance_m2);
+}
+
 SlamTracker::Rows SlamTracker::Linearize(const estimation::State& state, const std::vector<Pairing>& pairings,
                                          const std::vector<double>& variances_m2) const {
-  const estimation::Block position = state.layout().At(kPosition);
-  // Leitinger Eq. (16), current rows: each touches the agent's position and one VA's block.
   Rows out;
   out.rows.reserve(pairings.size());
   out.innovations_m.reserve(pairings.size());
   for (std::size_t k = 0; k < pairings.size(); ++k) {
     const Pairing& p = pairings[k];
-    const BlockKey key(blocks::kVirtualAnchor, map_[p.map_index].va.id);
-    const auto block = state.layout().Find(key);
-    const Vec2 va_m = block ? Vec2(state.mean().segment<2>(block->mean_offset)) : map_[p.map_index].prior_m;
-    const auto row = estimation::VaRangeRow(state, position, va_m, block, variances_m2[k]);
+    const auto row = MapRow(state, p.map_index, variances_m2[k]);
     if (!row) continue;
     out.rows.push_back(*row);
     out.innovations_m.push_back(p.measurement->range_m - row->predicted);

@@ -7,52 +7,20 @@
 #include "mirage/methods/coop/coop_tracker.h"
 
 #include <cmath>
-#include <memory>
 #include <vector>
 
 #include <gtest/gtest.h>
 
 #include "core/options_descriptor_expectations.h"
+#include "methods/coop/path_signals.h"
 #include "mirage/core/rng.h"
-#include "mirage/geometry/image_source.h"
 
 namespace mirage::methods::coop {
 namespace {
 
 using geometry::FloorPlan;
-using geometry::Wall;
-
-FloorPlan Room(double west_offset_m = 0.0) {
-  // 4.4 m x 7 m, the west wall (index 3) moved east by west_offset_m.
-  return FloorPlan({Wall{Vec2(0, 0), Vec2(4.4, 0), 0.5, "south"}, Wall{Vec2(4.4, 0), Vec2(4.4, 7), 0.5, "east"},
-                    Wall{Vec2(4.4, 7), Vec2(0, 7), 0.5, "north"},
-                    Wall{Vec2(west_offset_m, 7), Vec2(west_offset_m, 0), 0.5, "west"}},
-                   {});
-}
-
-// Exact ranges of every visible path of a link on `truth`, plus noise and clutter.
-class ExactSignal final : public LinkSignal {
- public:
-  ExactSignal(const FloorPlan& truth, const Link& link, const std::vector<Vec2>& agents, const AntennaLayout& antennas,
-              double sigma_m, int clutter, core::Rng& rng) {
-    const LinkEnds ends = AntennaPositions(link, agents, Vec2::Zero(), antennas);
-    for (const auto& walls : geometry::VisibleImagePaths(truth, ends.tx_m, ends.rx_m, 2)) {
-      ranges_.push_back(geometry::ComputeImagePath(truth, walls, ends.tx_m, ends.rx_m).length_m + rng.Normal(0.0, sigma_m));
-    }
-    for (int i = 0; i < clutter; ++i) ranges_.push_back(rng.Uniform(0.5, 15.0));
-  }
-  [[nodiscard]] std::vector<double> Ranges(int count) const override {
-    std::vector<double> out = ranges_;
-    if (static_cast<int>(out.size()) > count) out.resize(static_cast<std::size_t>(count));
-    return out;
-  }
-  [[nodiscard]] double AmplitudeAt(double /*range_m*/) const override { return 1.0; }
-
- private:
-  std::vector<double> ranges_;
-};
-
-constexpr PulseFacts kPulse{0.5e-9, 0.063, core::Medium{}};
+using testing::kPulse;
+using testing::Room;
 
 struct Walk {
   std::vector<std::vector<Vec2>> truth;  // per step, per agent
@@ -73,14 +41,7 @@ double Track(CoopTracker& tracker, const FloorPlan& truth_plan, const Walk& walk
   tracker.Initialize(walk.truth.front(), 0.0);
   double worst_m = 0.0;
   for (std::size_t n = 1; n < walk.truth.size(); ++n) {
-    std::vector<std::unique_ptr<ExactSignal>> signals;
-    std::vector<const LinkSignal*> pointers;
-    for (const auto& link : tracker.links()) {
-      signals.push_back(std::make_unique<ExactSignal>(truth_plan, link, walk.truth[n], AntennaLayout{}, sigma_m,
-                                                      clutter, rng));
-      pointers.push_back(signals.back().get());
-    }
-    tracker.Step(static_cast<double>(n), pointers);
+    testing::StepOnTruth(tracker, static_cast<double>(n), truth_plan, walk.truth[n], sigma_m, clutter, rng);
     for (int m = 0; m < tracker.agent_count(); ++m) {
       worst_m = std::max(worst_m, (tracker.Position(m) - walk.truth[n][static_cast<std::size_t>(m)]).norm());
     }

@@ -1,10 +1,12 @@
 // SPDX-License-Identifier: MIT
 // Test fixture for the MINT tests: a 6 m x 6 m square room with two anchors, its VAs, and
 // synthetic unlabeled range measurements generated from the VAs visible at the true position
-// (clean ranges with seeded Gaussian noise and Rician amplitudes, optional uniform clutter).
+// (clean ranges with seeded Gaussian noise and Rician amplitudes, optional uniform clutter), and
+// an epoch with one range made an outlier (the gate tests).
 #pragma once
 
 #include <cmath>
+#include <utility>
 #include <vector>
 
 #include "mirage/core/measurements.h"
@@ -75,6 +77,73 @@ inline std::vector<core::AnchorRanges> MeasureRanges(const geometry::VirtualAnch
     out.push_back(std::move(anchor));
   }
   return out;
+}
+
+// An epoch with one range made an outlier: `with` has the range of anchor anchor_index nearest to
+// path_m (within 5 cm of it) made offset_m longer, `without` leaves that range out.
+struct OutlierEpoch {
+  std::vector<core::AnchorRanges> with;
+  std::vector<core::AnchorRanges> without;
+};
+inline OutlierEpoch WithOutlier(const std::vector<core::AnchorRanges>& ranges, int anchor_index, double path_m,
+                                double offset_m) {
+  OutlierEpoch out{ranges, ranges};
+  for (std::size_t a = 0; a < ranges.size(); ++a) {
+    if (ranges[a].anchor_index != anchor_index) continue;
+    for (std::size_t j = 0; j < ranges[a].ranges.size(); ++j) {
+      if (std::abs(ranges[a].ranges[j].range_m - path_m) > 0.05) continue;
+      out.with[a].ranges[j].range_m = path_m + offset_m;
+      out.without[a].ranges.erase(out.without[a].ranges.begin() + static_cast<std::ptrdiff_t>(j));
+      return out;
+    }
+  }
+  return out;
+}
+
+// The gate tests' walk: `tracker` (a MintTracker or SlamTracker on `vas` and `plan`) starts at
+// (1.5, 2) and takes 20 steps of 5 cm east on 1 cm ranges; then `twin` becomes a copy of it, and
+// at step 21, at (2.55, 2), `tracker` takes the epoch with the range of outlier_va made offset_m
+// longer and `twin` the same epoch without that range. Returns their step results in that order.
+template <class Tracker>
+auto StepWithAndWithoutOutlier(Tracker& tracker, Tracker& twin, const geometry::VirtualAnchorSet& vas,
+                               const geometry::FloorPlan& plan, int outlier_va, double offset_m) {
+  const auto at = [](int k) { return Vec2(1.5 + 0.05 * k, 2.0); };
+  tracker.Initialize(0.0, at(0));
+  core::Rng rng(5, 0);
+  for (int k = 1; k <= 20; ++k) tracker.Step(0.1 * k, MeasureRanges(vas, plan, at(k), {}, rng));
+  const double path_m = (vas[outlier_va].position_m - at(21)).norm();
+  const OutlierEpoch epoch =
+      WithOutlier(MeasureRanges(vas, plan, at(21), {}, rng), vas[outlier_va].anchor_index, path_m, offset_m);
+  twin = tracker;
+  auto with = tracker.Step(2.1, epoch.with);
+  return std::pair(with, twin.Step(2.1, epoch.without));
+}
+
+// Whether a step result (MintStepResult or SlamStepResult) lists an association to va_id.
+template <class StepResult>
+bool Associated(const StepResult& step, int va_id) {
+  for (const auto& a : step.associations) {
+    if (a.va_id == va_id) return true;
+  }
+  return false;
+}
+
+// A first-order VA of anchor anchor_index visible at p_m whose range there is at least min_gap_m
+// from every other visible range of its anchor, so that only its own range competes for it; -1 if
+// there is none.
+inline int IsolatedReflection(const geometry::VirtualAnchorSet& vas, const geometry::FloorPlan& plan,
+                              int anchor_index, const Vec2& p_m, double min_gap_m) {
+  const auto visible = geometry::VisibleVirtualAnchors(vas, anchor_index, plan, p_m, 1);
+  for (const int id : visible) {
+    if (vas[id].order != 1) continue;
+    bool isolated = true;
+    for (const int other : visible) {
+      const double gap_m = (vas[id].position_m - p_m).norm() - (vas[other].position_m - p_m).norm();
+      if (other != id && std::abs(gap_m) < min_gap_m) isolated = false;
+    }
+    if (isolated) return id;
+  }
+  return -1;
 }
 
 }  // namespace mirage::methods::mint::testing

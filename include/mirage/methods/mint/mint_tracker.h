@@ -20,6 +20,7 @@
 #include "mirage/core/measurements.h"
 #include "mirage/core/options_descriptor.h"
 #include "mirage/estimation/ekf_update.h"
+#include "mirage/estimation/measurement_row.h"
 #include "mirage/estimation/motion/constant_velocity.h"
 #include "mirage/estimation/state.h"
 #include "mirage/geometry/floor_plan.h"
@@ -115,6 +116,11 @@ class MintTracker {
   MintStepResult Step(double t_s, std::span<const core::AnchorRanges> measurements);
 
   [[nodiscard]] const estimation::State& state() const { return state_; }
+  /// The linearised range to known VA va_id at `state` (Eq. 3.18, 3.19): the agent's position
+  /// block only, the VA fixed; variance_m2 becomes its R. Every update row is built here. Empty
+  /// when the agent sits on the VA.
+  [[nodiscard]] std::optional<estimation::MeasurementRow> VaRow(const estimation::State& state, int va_id,
+                                                                double variance_m2) const;
 
  private:
   // One association: a visible VA and the measurement assigned to it.

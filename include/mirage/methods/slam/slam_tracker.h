@@ -307,6 +307,13 @@ class SlamTracker {
 
   [[nodiscard]] const estimation::State& state() const { return state_; }
   [[nodiscard]] const VaDiscovery& discovery() const { return discovery_; }
+  /// The linearised range to map VA va_id (MapVa::id) at `state` (Leitinger Eq. 16, a current
+  /// row): the agent's position block and, when the VA is in `state`, its block; a VA outside it
+  /// (an anchor, a prior VA not yet associated) is fixed at its prior position. variance_m2
+  /// becomes its R. Every update row (both stages) is built here. Empty when va_id is not in the
+  /// map or the agent sits on the VA.
+  [[nodiscard]] std::optional<estimation::MeasurementRow> VaRow(const estimation::State& state, int va_id,
+                                                                double variance_m2) const;
 
  private:
   struct Pairing {
@@ -356,6 +363,9 @@ class SlamTracker {
   // The reference without stage 1: the agent's predicted position.
   [[nodiscard]] Reference PriorReference() const;
   [[nodiscard]] VaAtReference VaAt(const Reference& reference, std::size_t map_index) const;
+  // VaRow of map entry map_index.
+  [[nodiscard]] std::optional<estimation::MeasurementRow> MapRow(const estimation::State& state, std::size_t map_index,
+                                                                 double variance_m2) const;
   [[nodiscard]] Rows Linearize(const estimation::State& state, const std::vector<Pairing>& pairings,
                                const std::vector<double>& variances_m2) const;
   estimation::UpdateResult Update(estimation::State& state, const std::vector<Pairing>& pairings,
