@@ -20,7 +20,7 @@ void RunSteps(benchmark::State& state, const methods::mint::MintOptions& mint, c
   methods::mint::MintTracker tracker(mint, d.vas, config.plan, sigma1);
   std::size_t step = 0;
   tracker.Initialize(d.samples.front().t_s, d.samples.front().position_m);
-  std::vector<core::AnchorRanges> one(1);
+  std::vector<core::RangeSet> one(1);
   for (auto _ : state) {
     if (step == d.samples.size()) {
       // Start the trajectory again (outside the measured region would be as fair, but this is
@@ -29,7 +29,7 @@ void RunSteps(benchmark::State& state, const methods::mint::MintOptions& mint, c
       tracker.Initialize(d.samples.front().t_s, d.samples.front().position_m);
     }
     // One iteration = one time step with every anchor, each anchor processed separately.
-    std::vector<core::AnchorRanges> all(static_cast<std::size_t>(anchors));
+    std::vector<core::RangeSet> all(static_cast<std::size_t>(anchors));
     for (int a = 0; a < anchors; ++a) {
       all[static_cast<std::size_t>(a)].anchor_index = a;
       for (const auto& m : extractor.Extract(d.cirs[step][static_cast<std::size_t>(a)])) {

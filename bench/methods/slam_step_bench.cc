@@ -13,7 +13,7 @@
 
 #include <benchmark/benchmark.h>
 
-#include "mirage/core/measurements.h"
+#include "mirage/core/records.h"
 #include "mirage/geometry/floor_plan.h"
 #include "mirage/geometry/trajectory.h"
 #include "mirage/geometry/virtual_anchor.h"
@@ -35,7 +35,7 @@ struct Room {
   geometry::FloorPlan plan;
   geometry::VirtualAnchorSet vas;
   std::vector<geometry::TrajectorySample> lap;          // one closed lap, last sample != first
-  std::vector<std::vector<core::AnchorRanges>> ranges;  // [lap step][anchor], precomputed
+  std::vector<std::vector<core::RangeSet>> ranges;  // [lap step][anchor], precomputed
   double dt_s = 0.0;
 };
 
@@ -59,7 +59,7 @@ const Room& EmptyRoom() {
     // Exact ranges of every VA visible at the true position, amplitude gain / distance: clean
     // data, so the cost measured is the filter's and not that of clutter handling.
     for (const auto& s : r.lap) {
-      std::vector<core::AnchorRanges> all(static_cast<std::size_t>(r.vas.anchor_count()));
+      std::vector<core::RangeSet> all(static_cast<std::size_t>(r.vas.anchor_count()));
       for (int a = 0; a < r.vas.anchor_count(); ++a) {
         auto& anchor = all[static_cast<std::size_t>(a)];
         anchor.anchor_index = a;

@@ -50,7 +50,7 @@ std::vector<std::string> Validate(const RangeLevelOptions& options) {
 RangeLevelSimulator::RangeLevelSimulator(const RangeLevelOptions& options, const CirSynthesizer& synthesizer)
     : options_(options), synthesizer_(&synthesizer) {}
 
-core::AnchorRanges RangeLevelSimulator::Simulate(int anchor_index, std::span<const SpecularPath> paths,
+core::RangeSet RangeLevelSimulator::Simulate(int anchor_index, std::span<const SpecularPath> paths,
                                                  double los_distance_m, core::Rng& rng,
                                                  std::vector<PathTruth>* truth) const {
   const auto& channel = synthesizer_->options();
@@ -101,7 +101,7 @@ core::AnchorRanges RangeLevelSimulator::Simulate(int anchor_index, std::span<con
     merged.push_back(d);
   }
 
-  core::AnchorRanges out;
+  core::RangeSet out;
   out.anchor_index = anchor_index;
   for (const auto& d : merged) out.ranges.push_back({d.range_m, std::abs(d.amplitude)});
   // Clutter: Poisson count, uniform over the observed range window, Rayleigh amplitude at the

@@ -15,7 +15,7 @@
 
 #include "mirage/channel/cir_synthesizer.h"
 #include "mirage/channel/specular_path.h"
-#include "mirage/core/measurements.h"
+#include "mirage/core/records.h"
 #include "mirage/core/options_descriptor.h"
 #include "mirage/core/rng.h"
 
@@ -55,7 +55,7 @@ class RangeLevelSimulator {
   /// The unlabeled ranges of one anchor at one step (sorted by range; consumers must not rely on
   /// any order). truth, if given, is replaced by the paths inside the window with their true SINR
   /// (as CirSynthesizer::Synthesize returns them).
-  core::AnchorRanges Simulate(int anchor_index, std::span<const SpecularPath> paths, double los_distance_m,
+  core::RangeSet Simulate(int anchor_index, std::span<const SpecularPath> paths, double los_distance_m,
                               core::Rng& rng, std::vector<PathTruth>* truth = nullptr) const;
 
  private:

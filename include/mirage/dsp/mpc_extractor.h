@@ -16,7 +16,7 @@
 
 #include "mirage/channel/raised_cosine_pulse.h"
 #include "mirage/core/fft.h"
-#include "mirage/core/measurements.h"
+#include "mirage/core/records.h"
 #include "mirage/core/medium.h"
 #include "mirage/core/options_descriptor.h"
 #include "mirage/core/types.h"

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "mirage/core/measurements.h"
+#include "mirage/core/records.h"
 #include "mirage/core/types.h"
 
 namespace mirage::pipeline {
@@ -18,7 +18,7 @@ struct RecordedStep {
   double t_s = 0.0;
   /// One entry per anchor, in anchor order (anchor_index == position); an anchor without rows at
   /// this time has no ranges (missed detections, or no reply).
-  std::vector<core::AnchorRanges> anchors;
+  std::vector<core::RangeSet> anchors;
 };
 
 /// A true position at one time.

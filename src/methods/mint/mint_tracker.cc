@@ -90,7 +90,7 @@ void MintTracker::Initialize(double t_s, const Vec2& p0_m) {
 }
 
 std::vector<MintTracker::Pairing> MintTracker::Associate(const Reference& reference,
-                                                         std::span<const core::AnchorRanges> measurements,
+                                                         std::span<const core::RangeSet> measurements,
                                                          int max_order, double gate, int* visible_count) const {
   std::vector<Pairing> pairings;
   const Vec2& at_m = reference.position_m;
@@ -177,7 +177,7 @@ double MintTracker::CurrentVariance(int va_id) const {
   return variance_.CurrentVariance(va_id);
 }
 
-bool MintTracker::CheckTrackLoss(const Vec2& position_m, std::span<const core::AnchorRanges> measurements) {
+bool MintTracker::CheckTrackLoss(const Vec2& position_m, std::span<const core::RangeSet> measurements) {
   const auto& reloc = options_.relocalization;
   const MatchScore score = ScorePosition(*vas_, *plan_, position_m, measurements, reloc);
   if (score.visible < reloc.min_visible || score.fraction() >= reloc.lost_score) {
@@ -194,7 +194,7 @@ bool MintTracker::CheckTrackLoss(const Vec2& position_m, std::span<const core::A
   return true;
 }
 
-MintStepResult MintTracker::Step(double t_s, std::span<const core::AnchorRanges> measurements) {
+MintStepResult MintTracker::Step(double t_s, std::span<const core::RangeSet> measurements) {
   estimation::Propagate(state_, t_s, {&motion_});
   MintStepResult result;
   Reference reference{state_.Mean(kPosition), state_.Covariance(kPosition)};

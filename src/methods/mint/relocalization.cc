@@ -85,7 +85,7 @@ std::vector<std::string> Validate(const RelocalizationOptions& options) {
 }
 
 MatchScore ScorePosition(const geometry::VirtualAnchorSet& vas, const geometry::FloorPlan& plan, const Vec2& p_m,
-                         std::span<const core::AnchorRanges> measurements, const RelocalizationOptions& options) {
+                         std::span<const core::RangeSet> measurements, const RelocalizationOptions& options) {
   MatchScore score;
   for (const auto& anchor : measurements) {
     for (const int id : geometry::VisibleVirtualAnchors(vas, anchor.anchor_index, plan, p_m, options.max_order)) {
@@ -113,7 +113,7 @@ struct Best {
 };
 
 void ScanGrid(const geometry::VirtualAnchorSet& vas, const geometry::FloorPlan& plan, const Vec2& center_m,
-              double radius_m, double step_m, std::span<const core::AnchorRanges> measurements,
+              double radius_m, double step_m, std::span<const core::RangeSet> measurements,
               const RelocalizationOptions& options, Best& best) {
   const int n = static_cast<int>(std::lround(radius_m / step_m));
   for (int ix = -n; ix <= n; ++ix) {
@@ -131,7 +131,7 @@ void ScanGrid(const geometry::VirtualAnchorSet& vas, const geometry::FloorPlan& 
 }  // namespace
 
 std::optional<Vec2> SearchPosition(const geometry::VirtualAnchorSet& vas, const geometry::FloorPlan& plan,
-                                   const Vec2& center_m, std::span<const core::AnchorRanges> measurements,
+                                   const Vec2& center_m, std::span<const core::RangeSet> measurements,
                                    const RelocalizationOptions& options) {
   Best best;
   ScanGrid(vas, plan, center_m, options.search_radius_m, options.search_step_m, measurements, options, best);
@@ -143,7 +143,7 @@ std::optional<Vec2> SearchPosition(const geometry::VirtualAnchorSet& vas, const 
 }
 
 std::optional<PlanFix> SearchFloorPlan(const geometry::VirtualAnchorSet& vas, const geometry::FloorPlan& plan,
-                                       std::span<const core::AnchorRanges> measurements,
+                                       std::span<const core::RangeSet> measurements,
                                        const RelocalizationOptions& options) {
   if (plan.walls().empty()) return std::nullopt;
   const auto [lo, hi] = plan.Bounds();

@@ -295,7 +295,7 @@ std::vector<std::size_t> SlamTracker::Candidates(int anchor_index, const Vec2& a
 }
 
 std::vector<SlamTracker::Pairing> SlamTracker::Associate(const Reference& reference,
-                                                         std::span<const core::AnchorRanges> measurements,
+                                                         std::span<const core::RangeSet> measurements,
                                                          bool los_only, double gate) const {
   std::vector<Pairing> pairings;
   const Vec2& at_m = reference.position_m;
@@ -551,7 +551,7 @@ estimation::UpdateResult SlamTracker::Update(estimation::State& state, const std
   return estimation::Update(state, rows.rows, rows.innovations_m, update);
 }
 
-SlamStepResult SlamTracker::Step(double t_s, std::span<const core::AnchorRanges> measurements) {
+SlamStepResult SlamTracker::Step(double t_s, std::span<const core::RangeSet> measurements) {
   // The agent moves (Eq. 13-14); discovered VAs may take a random walk (off by default).
   const estimation::RandomWalk va_walk(options_.discovered_va_walk_m_per_sqrt_s, DiscoveredVaBlocks());
   estimation::Propagate(state_, t_s, {&motion_, &va_walk});
@@ -733,7 +733,7 @@ void SlamTracker::MarkShadowed(std::vector<Pairing>& pairings, std::span<const V
   }
 }
 
-bool SlamTracker::RecoverTrack(double t_s, std::span<const core::AnchorRanges> measurements) {
+bool SlamTracker::RecoverTrack(double t_s, std::span<const core::RangeSet> measurements) {
   if (!options_.recovery.enabled) return false;
   // With the floor plan's VAs (the known-VA baseline) every VA, the anchors' LOS included,
   // scores only where ray tracing makes it visible, as in MINT's relocalization: counted

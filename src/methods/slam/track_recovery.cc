@@ -97,7 +97,7 @@ std::vector<std::string> Validate(const TrackRecoveryOptions& options) {
   return TrackRecoveryOptionsDescriptor().Validate(options);
 }
 
-int CountMatches(const Vec2& p_m, std::span<const MapPoint> map, std::span<const core::AnchorRanges> measurements,
+int CountMatches(const Vec2& p_m, std::span<const MapPoint> map, std::span<const core::RangeSet> measurements,
                  double tolerance_m) {
   int matched = 0;
   for (const MapPoint& point : map) {
@@ -119,7 +119,7 @@ namespace {
 // strongest ranges as well were tried: on the seminar-room signals the extra candidates won by
 // chance often enough to restart good tracks, trajectory 2 p90 5.1 -> 6.1 cm and 0 -> 2-3
 // diverged runs on seeds 2 and 3.)
-std::vector<double> LosRanges(std::span<const core::AnchorRanges> measurements, int anchor_index, int count) {
+std::vector<double> LosRanges(std::span<const core::RangeSet> measurements, int anchor_index, int count) {
   std::vector<double> out;
   for (const auto& anchor : measurements) {
     if (anchor.anchor_index != anchor_index) continue;
@@ -158,7 +158,7 @@ void LooseCircleIntersections(const Vec2& c1, double r1, const Vec2& c2, double 
 
 }  // namespace
 
-std::vector<Vec2> LosCandidates(std::span<const MapPoint> anchors, std::span<const core::AnchorRanges> measurements,
+std::vector<Vec2> LosCandidates(std::span<const MapPoint> anchors, std::span<const core::RangeSet> measurements,
                                 int los_candidates, double slack_m) {
   std::vector<std::vector<double>> radii_m;
   for (const MapPoint& anchor : anchors) radii_m.push_back(LosRanges(measurements, anchor.anchor_index, los_candidates));
@@ -179,7 +179,7 @@ void TrackRecovery::Reset() { pending_steps_ = 0; }
 
 std::optional<Restart> TrackRecovery::Check(double t_s, const Vec2& estimate_m, std::span<const MapPoint> anchors,
                                             const std::function<int(const Vec2&)>& score_at,
-                                            std::span<const core::AnchorRanges> measurements) {
+                                            std::span<const core::RangeSet> measurements) {
   if (!options_.enabled) return std::nullopt;
   const int estimate_score = score_at(estimate_m);
   const int needed = estimate_score + options_.min_margin;

@@ -286,9 +286,9 @@ TrackRun PulledThroughTheWestWall(bool constrain) {
   model.range_sigma_m = 0.002;
   TrackRun run;
   for (int k = 1; k <= 20; ++k) {
-    std::vector<core::AnchorRanges> ranges;
+    std::vector<core::RangeSet> ranges;
     for (int a = 0; a < vas.anchor_count(); ++a) {
-      core::AnchorRanges anchor;
+      core::RangeSet anchor;
     anchor.anchor_index = a;
       // The VAs visible from inside, at the distances from the outside point.
       for (const int id : geometry::VisibleVirtualAnchors(vas, a, plan, start, 1)) {

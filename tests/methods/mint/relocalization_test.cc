@@ -42,11 +42,11 @@ core::RangeSet Set(int anchor, std::vector<core::RangeMeasurement> ranges) {
   return set;
 }
 
-std::vector<core::AnchorRanges> ExactRanges(const geometry::VirtualAnchorSet& vas, const geometry::FloorPlan& plan,
+std::vector<core::RangeSet> ExactRanges(const geometry::VirtualAnchorSet& vas, const geometry::FloorPlan& plan,
                                             const Vec2& p_m) {
-  std::vector<core::AnchorRanges> out;
+  std::vector<core::RangeSet> out;
   for (int a = 0; a < vas.anchor_count(); ++a) {
-    core::AnchorRanges anchor;
+    core::RangeSet anchor;
     anchor.anchor_index = a;
     for (const int id : geometry::VisibleVirtualAnchors(vas, a, plan, p_m, 1)) anchor.ranges.push_back({RangeTo(vas, id, p_m), 1.0});
     out.push_back(anchor);
@@ -60,7 +60,7 @@ TEST(ScorePosition, CountsRangesWithinTheToleranceAsMatchesOfTheVisibleVas) {
   // and a clutter range; anchor 1 gets nothing.
   const auto plan = EmptySquareRoom();
   const auto vas = SquareRoomVas(plan, 1);
-  const std::vector<core::AnchorRanges> ranges{
+  const std::vector<core::RangeSet> ranges{
       Set(0, {{RangeTo(vas, IdOf(vas, 0, {}), kAgent), 1.0},
               {RangeTo(vas, IdOf(vas, 0, {0}), kAgent) + 0.04, 0.5},
               {RangeTo(vas, IdOf(vas, 0, {1}), kAgent) - 0.06, 0.5},
@@ -82,7 +82,7 @@ TEST(ScorePosition, CountsOnlyTheAnchorsThatHaveMeasurementsAndOnlyUpToMaxOrder)
   const auto plan = EmptySquareRoom();
   const auto vas = SquareRoomVas(plan, 2);
   auto all = ExactRanges(vas, plan, kAgent);
-  const std::vector<core::AnchorRanges> only_anchor_1{all[1]};
+  const std::vector<core::RangeSet> only_anchor_1{all[1]};
   RelocalizationOptions los_only;
   los_only.max_order = 0;
 
@@ -107,7 +107,7 @@ TEST(ScorePosition, IgnoresVasThatAnObstacleBlocks) {
   const int los = IdOf(vas, 0, {});
   ASSERT_FALSE(geometry::IsVisible(vas, los, plan, behind));
   const auto visible = geometry::VisibleVirtualAnchors(vas, 0, plan, behind, 1);
-  std::vector<core::AnchorRanges> ranges{Set(0, {{RangeTo(vas, los, behind), 1.0}})};
+  std::vector<core::RangeSet> ranges{Set(0, {{RangeTo(vas, los, behind), 1.0}})};
   for (const int id : visible) ranges[0].ranges.push_back({RangeTo(vas, id, behind), 0.5});
 
   // Act
@@ -178,7 +178,7 @@ TEST(SearchPosition, ReturnsNothingForClutterOnly) {
   const auto plan = EmptySquareRoom();
   const auto vas = SquareRoomVas(plan, 1);
   core::Rng rng(3, 0);
-  std::vector<core::AnchorRanges> ranges{Set(0, {}), Set(1, {})};
+  std::vector<core::RangeSet> ranges{Set(0, {}), Set(1, {})};
   for (auto& anchor : ranges) {
     for (int i = 0; i < 3; ++i) anchor.ranges.push_back({rng.Uniform(0.0, 12.0), 0.1});
   }

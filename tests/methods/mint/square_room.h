@@ -9,7 +9,7 @@
 #include <utility>
 #include <vector>
 
-#include "mirage/core/measurements.h"
+#include "mirage/core/records.h"
 #include "mirage/core/rng.h"
 #include "mirage/geometry/floor_plan.h"
 #include "mirage/geometry/virtual_anchor.h"
@@ -51,12 +51,12 @@ struct MeasurementModel {
 
 // Ranges to both anchors at the true position p_m; the range to VA k is |p - VA_k| + noise and
 // its amplitude gain_k / d_k * |sqrt(K) + CN(0, 1)|.
-inline std::vector<core::AnchorRanges> MeasureRanges(const geometry::VirtualAnchorSet& vas,
+inline std::vector<core::RangeSet> MeasureRanges(const geometry::VirtualAnchorSet& vas,
                                                     const geometry::FloorPlan& plan, const Vec2& p_m,
                                                     const MeasurementModel& model, core::Rng& rng) {
-  std::vector<core::AnchorRanges> out;
+  std::vector<core::RangeSet> out;
   for (int a = 0; a < vas.anchor_count(); ++a) {
-    core::AnchorRanges anchor;
+    core::RangeSet anchor;
     anchor.anchor_index = a;
     std::vector<int> ids;
     if (model.only_visible) {
@@ -82,10 +82,10 @@ inline std::vector<core::AnchorRanges> MeasureRanges(const geometry::VirtualAnch
 // An epoch with one range made an outlier: `with` has the range of anchor anchor_index nearest to
 // path_m (within 5 cm of it) made offset_m longer, `without` leaves that range out.
 struct OutlierEpoch {
-  std::vector<core::AnchorRanges> with;
-  std::vector<core::AnchorRanges> without;
+  std::vector<core::RangeSet> with;
+  std::vector<core::RangeSet> without;
 };
-inline OutlierEpoch WithOutlier(const std::vector<core::AnchorRanges>& ranges, int anchor_index, double path_m,
+inline OutlierEpoch WithOutlier(const std::vector<core::RangeSet>& ranges, int anchor_index, double path_m,
                                 double offset_m) {
   OutlierEpoch out{ranges, ranges};
   for (std::size_t a = 0; a < ranges.size(); ++a) {

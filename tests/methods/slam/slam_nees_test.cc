@@ -73,9 +73,9 @@ StateNees RunNees(const SlamOptions& filter, int runs, int steps) {
     tracker.Initialize(0.0, start_m);
     for (int k = 1; k <= steps; ++k) {
       const Vec2& p_m = truth.position_m[static_cast<std::size_t>(k)];
-      std::vector<core::AnchorRanges> ranges;
+      std::vector<core::RangeSet> ranges;
       for (int a = 0; a < vas.anchor_count(); ++a) {
-        core::AnchorRanges anchor;
+        core::RangeSet anchor;
         anchor.anchor_index = a;
         for (const int id : geometry::VisibleVirtualAnchors(vas, a, plan, p_m, 1)) {
           const double range_m = (va_m[static_cast<std::size_t>(id)] - p_m).norm() + kRangeSigmaM * rng.Normal();

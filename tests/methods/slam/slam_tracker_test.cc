@@ -158,7 +158,7 @@ TEST(SlamTracker, WithoutDiscoveryTheMapHoldsOnlyTheAnchors) {
 // Runs the loop up to step k with `known` in the tracker and `truth` producing the ranges; at
 // step k `edit` changes the ranges first, at step k - 1 `edit_previous`. Returns what step k
 // produced.
-using Edit = std::function<void(std::vector<core::AnchorRanges>&, const Vec2&)>;
+using Edit = std::function<void(std::vector<core::RangeSet>&, const Vec2&)>;
 SlamStepResult RunToStep(const SlamOptions& options, const geometry::VirtualAnchorSet& known,
                          const geometry::VirtualAnchorSet& truth, std::uint64_t seed, std::size_t k, const Edit& edit,
                          const Edit& edit_previous = [](auto&, const Vec2&) {}) {
@@ -188,7 +188,7 @@ std::array<int, 2> DiscoveredAssociationsWithWeakRanges(double blocked_amplitude
   SlamOptions options;
   options.prior_visibility = false;
   options.blocked_amplitude_probability = blocked_amplitude_probability;
-  const auto step = RunToStep(options, anchors_only, truth, 4, 150, [&](std::vector<core::AnchorRanges>& ranges,
+  const auto step = RunToStep(options, anchors_only, truth, 4, 150, [&](std::vector<core::RangeSet>& ranges,
                                                                            const Vec2& p_m) {
     for (auto& anchor : ranges) {
       const double los_m = (anchors_only[anchor.anchor_index].position_m - p_m).norm();
@@ -245,7 +245,7 @@ std::map<int, double> RejectionShifts(double gate_chi2, bool prior_visibility, b
   for (const auto& va : vas.all()) rejected_at_m[va.id] = 1.0;
   for (int i = 28; i >= 0; --i) {  // downwards: the smallest rejecting shift is written last
     const double shift_m = 0.005 * i;
-    const auto step = RunToStep(options, vas, vas, 6, 60, [&](std::vector<core::AnchorRanges>& ranges, const Vec2& p_m) {
+    const auto step = RunToStep(options, vas, vas, 6, 60, [&](std::vector<core::RangeSet>& ranges, const Vec2& p_m) {
       for (auto& anchor : ranges) {
         const double los_m = (vas[anchor.anchor_index].position_m - p_m).norm();  // vas[a]: anchor a
         for (auto& r : anchor.ranges) {
@@ -349,7 +349,7 @@ bool AssociatesAWeakLosStandIn(double amplitude_gate_probability) {
   SlamOptions options = FirstOrderVasKnown();
   options.amplitude_gate_probability = amplitude_gate_probability;
   const int los_id = vas[0].id;  // anchor 0 itself: a VA set lists each anchor before its VAs
-  const auto step = RunToStep(options, vas, vas, 5, 60, [&](std::vector<core::AnchorRanges>& ranges, const Vec2& p_m) {
+  const auto step = RunToStep(options, vas, vas, 5, 60, [&](std::vector<core::RangeSet>& ranges, const Vec2& p_m) {
     // The LOS is blocked: in its place a diffuse-multipath peak 2 cm later at a tenth of the
     // amplitude - inside every range gate.
     const double los_m = (vas[los_id].position_m - p_m).norm();
@@ -375,7 +375,7 @@ std::optional<double> StartUpLosRangeOffset(double startup_amplitude_k_factor, d
   options.startup_amplitude_k_factor = startup_amplitude_k_factor;
   const int los_id = vas[0].id;  // anchor 0 itself
   double los_m = 0.0;
-  const auto step = RunToStep(options, vas, vas, 5, 3, [&](std::vector<core::AnchorRanges>& ranges, const Vec2& p_m) {
+  const auto step = RunToStep(options, vas, vas, 5, 3, [&](std::vector<core::RangeSet>& ranges, const Vec2& p_m) {
     los_m = (vas[los_id].position_m - p_m).norm();
     auto& list = ranges[0].ranges;
     const auto los = std::min_element(list.begin(), list.end(), [&](const auto& a, const auto& b) {
@@ -445,17 +445,17 @@ bool ReacquiresLos(double los_reacquire_m, bool missed_before, double amplitude_
   options.prior_max_order = 1;
   options.discovery.enabled = false;
   options.los_reacquire_m = los_reacquire_m;
-  const auto nearest_los = [&](std::vector<core::AnchorRanges>& ranges, const Vec2& p_m) {
+  const auto nearest_los = [&](std::vector<core::RangeSet>& ranges, const Vec2& p_m) {
     const double los_m = (vas[0].position_m - p_m).norm();  // vas[0]: anchor 0 itself
     auto& list = ranges[0].ranges;
     return std::min_element(list.begin(), list.end(), [&](const auto& a, const auto& b) {
       return std::abs(a.range_m - los_m) < std::abs(b.range_m - los_m);
     });
   };
-  const Edit miss = [&](std::vector<core::AnchorRanges>& ranges, const Vec2& p_m) {
+  const Edit miss = [&](std::vector<core::RangeSet>& ranges, const Vec2& p_m) {
     if (missed_before) ranges[0].ranges.erase(nearest_los(ranges, p_m));
   };
-  const Edit late = [&](std::vector<core::AnchorRanges>& ranges, const Vec2& p_m) {
+  const Edit late = [&](std::vector<core::RangeSet>& ranges, const Vec2& p_m) {
     const auto los = nearest_los(ranges, p_m);
     los->range_m += 0.3;
     los->amplitude = amplitude_factor * *los->amplitude;
@@ -471,7 +471,7 @@ TEST(SlamTracker, AZeroFirstAmplitudeDoesNotShutTheLosOut) {
   // zero specular amplitude would reject every amplitude there is).
   const auto plan = mint::testing::EmptySquareRoom();
   const auto vas = mint::testing::SquareRoomVas(plan, 1);
-  const Edit zero = [](std::vector<core::AnchorRanges>& ranges, const Vec2&) {
+  const Edit zero = [](std::vector<core::RangeSet>& ranges, const Vec2&) {
     for (auto& r : ranges[0].ranges) r.amplitude = 0.0;
   };
   const auto step = RunToStep(FirstOrderVasKnown(), vas, vas, 5, 2, [](auto&, const Vec2&) {}, zero);
@@ -504,7 +504,7 @@ TEST(SlamTracker, ShadowConeWeakensOnlyTheDiscoveredVasBehindABlockedAnchor) {
   SlamOptions options;
   options.shadow_cone_deg = 30.0;  // off by default; 5 cm std added
   options.prior_visibility = false;
-  const auto block_los = [&](std::vector<core::AnchorRanges>& ranges, const Vec2& p_m) {
+  const auto block_los = [&](std::vector<core::RangeSet>& ranges, const Vec2& p_m) {
     const double los_m = (anchors_only[0].position_m - p_m).norm();
     std::erase_if(ranges[0].ranges, [&](const core::RangeMeasurement& r) { return std::abs(r.range_m - los_m) < 0.1; });
   };
@@ -555,7 +555,7 @@ struct MirrorOutcome {
 };
 
 // Anchor 0's LOS (its shortest range) is not detected.
-void DropAnchor0Los(std::vector<core::AnchorRanges>& ranges) {
+void DropAnchor0Los(std::vector<core::RangeSet>& ranges) {
   auto& r = ranges[0].ranges;
   r.erase(std::min_element(r.begin(), r.end(), [](const auto& a, const auto& b) { return a.range_m < b.range_m; }));
 }

@@ -32,8 +32,8 @@ std::vector<MapPoint> Map() {
 // The score the tracker gives without a floor plan: the map points matched at p (the default
 // 5 cm tolerance). The measurements must outlive the returned function (a temporary cannot be
 // passed).
-std::function<int(const Vec2&)> ScoreOnTheMap(std::vector<core::AnchorRanges>&& measured) = delete;
-std::function<int(const Vec2&)> ScoreOnTheMap(const std::vector<core::AnchorRanges>& measured) {
+std::function<int(const Vec2&)> ScoreOnTheMap(std::vector<core::RangeSet>&& measured) = delete;
+std::function<int(const Vec2&)> ScoreOnTheMap(const std::vector<core::RangeSet>& measured) {
   return [&measured](const Vec2& p_m) {
     return CountMatches(p_m, Map(), measured, TrackRecoveryOptions{}.match_tolerance_m);
   };
@@ -42,8 +42,8 @@ std::function<int(const Vec2&)> ScoreOnTheMap(const std::vector<core::AnchorRang
 // Exact ranges of every map point from p_m, plus `clutter` weak ranges per anchor, uniform
 // between the LOS range and 12 m (diffuse multipath follows the LOS), and one early false peak
 // per anchor when clutter > 0 (the LOS is then the second range).
-std::vector<core::AnchorRanges> Measure(const Vec2& p_m, int clutter, core::Rng& rng) {
-  std::vector<core::AnchorRanges> out(2);
+std::vector<core::RangeSet> Measure(const Vec2& p_m, int clutter, core::Rng& rng) {
+  std::vector<core::RangeSet> out(2);
   for (int a = 0; a < 2; ++a) out[static_cast<std::size_t>(a)].anchor_index = a;
   for (const MapPoint& point : Map()) {
     out[static_cast<std::size_t>(point.anchor_index)].ranges.push_back({(point.position_m - p_m).norm(), 1.0});
@@ -57,7 +57,7 @@ std::vector<core::AnchorRanges> Measure(const Vec2& p_m, int clutter, core::Rng&
 }
 
 TEST(LosCandidates, AreTheIntersectionsOfTheEarliestRangesCircles) {
-  std::vector<core::AnchorRanges> m(2);
+  std::vector<core::RangeSet> m(2);
   m[0].anchor_index = 0;
   m[0].ranges = {{9.0, {}}, {2.5, {}}, {7.0, {}}};  // the earliest: 2.5 m
   m[1].anchor_index = 1;
@@ -73,7 +73,7 @@ TEST(LosCandidates, AreTheIntersectionsOfTheEarliestRangesCircles) {
 }
 
 TEST(LosCandidates, CirclesMissingByLessThanTheSlackTouchBetweenThem) {
-  std::vector<core::AnchorRanges> m(2);
+  std::vector<core::RangeSet> m(2);
   m[0].anchor_index = 0;
   m[0].ranges = {{1.98, {}}};
   m[1].anchor_index = 1;

@@ -6,7 +6,7 @@
 
 #include <vector>
 
-#include "mirage/core/measurements.h"
+#include "mirage/core/records.h"
 #include "mirage/core/medium.h"
 #include "mirage/core/types.h"
 #include "mirage/dsp/mpc_extractor.h"

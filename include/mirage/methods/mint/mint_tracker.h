@@ -17,7 +17,7 @@
 
 #include <Eigen/Core>
 
-#include "mirage/core/measurements.h"
+#include "mirage/core/records.h"
 #include "mirage/core/options_descriptor.h"
 #include "mirage/estimation/ekf_update.h"
 #include "mirage/estimation/measurement_row.h"
@@ -113,7 +113,7 @@ class MintTracker {
   void Initialize(double t_s, const Vec2& p0_m);
 
   /// Predicts to t_s (>= the previous time) and updates with the ranges of all anchors.
-  MintStepResult Step(double t_s, std::span<const core::AnchorRanges> measurements);
+  MintStepResult Step(double t_s, std::span<const core::RangeSet> measurements);
 
   [[nodiscard]] const estimation::State& state() const { return state_; }
   /// The linearised range to known VA va_id at `state` (Eq. 3.18, 3.19): the agent's position
@@ -139,7 +139,7 @@ class MintTracker {
   // innovation gate `gate` (chi^2 threshold, 0 = none). Adds the number of visible VAs to
   // *visible_count when given.
   [[nodiscard]] std::vector<Pairing> Associate(const Reference& reference,
-                                               std::span<const core::AnchorRanges> measurements, int max_order,
+                                               std::span<const core::RangeSet> measurements, int max_order,
                                                double gate, int* visible_count) const;
   // EKF update of `state` with the pairings, linearised at its mean (Eq. 3.18-3.24). The
   // optional sinrs (parallel to pairings) are copied into the reported associations.
@@ -150,7 +150,7 @@ class MintTracker {
   // Range variance of the VA as it stands, without recording anything (m^2).
   [[nodiscard]] double CurrentVariance(int va_id) const;
   // Loss detection on the score at `position_m`; relocalizes when lost. True if it restarted.
-  bool CheckTrackLoss(const Vec2& position_m, std::span<const core::AnchorRanges> measurements);
+  bool CheckTrackLoss(const Vec2& position_m, std::span<const core::RangeSet> measurements);
 
   MintOptions options_;
   const geometry::VirtualAnchorSet* vas_;

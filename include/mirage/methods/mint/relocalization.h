@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "mirage/core/measurements.h"
+#include "mirage/core/records.h"
 #include "mirage/core/options_descriptor.h"
 #include "mirage/core/types.h"
 #include "mirage/geometry/floor_plan.h"
@@ -64,12 +64,12 @@ struct MatchScore {
 
 /// The match score of agent position p_m for the measurements of all anchors.
 MatchScore ScorePosition(const geometry::VirtualAnchorSet& vas, const geometry::FloorPlan& plan, const Vec2& p_m,
-                         std::span<const core::AnchorRanges> measurements, const RelocalizationOptions& options);
+                         std::span<const core::RangeSet> measurements, const RelocalizationOptions& options);
 
 /// The best-scoring position within the search square around center_m, if its score reaches
 /// found_score with at least min_visible visible VAs. Points inside obstacles are skipped.
 std::optional<Vec2> SearchPosition(const geometry::VirtualAnchorSet& vas, const geometry::FloorPlan& plan,
-                                   const Vec2& center_m, std::span<const core::AnchorRanges> measurements,
+                                   const Vec2& center_m, std::span<const core::RangeSet> measurements,
                                    const RelocalizationOptions& options);
 
 /// A position found in the whole floor plan, and the coarse grid step it was found on (m).
@@ -83,7 +83,7 @@ struct PlanFix {
 /// reaches found_score with at least min_visible visible VAs and no cell more than two coarse
 /// steps away scores as well: a start without a start point. Empty for an empty plan.
 std::optional<PlanFix> SearchFloorPlan(const geometry::VirtualAnchorSet& vas, const geometry::FloorPlan& plan,
-                                       std::span<const core::AnchorRanges> measurements,
+                                       std::span<const core::RangeSet> measurements,
                                        const RelocalizationOptions& options);
 
 /// A start from SearchFloorPlan is taken only when the next epoch's search confirms it: within

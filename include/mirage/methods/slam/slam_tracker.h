@@ -41,7 +41,7 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 
-#include "mirage/core/measurements.h"
+#include "mirage/core/records.h"
 #include "mirage/core/options_descriptor.h"
 #include "mirage/estimation/block_update.h"
 #include "mirage/estimation/ekf_update.h"
@@ -300,7 +300,7 @@ class SlamTracker {
   void Initialize(double t_s, const Vec2& p0_m);
 
   /// Predicts to t_s and updates with the ranges of all anchors.
-  SlamStepResult Step(double t_s, std::span<const core::AnchorRanges> measurements);
+  SlamStepResult Step(double t_s, std::span<const core::RangeSet> measurements);
 
   /// The map with positions and covariances read from the state.
   [[nodiscard]] std::vector<MapVa> Map() const;
@@ -358,7 +358,7 @@ class SlamTracker {
   // Map entries of one anchor that may be associated at the reference position.
   [[nodiscard]] std::vector<std::size_t> Candidates(int anchor_index, const Vec2& at_m, bool los_only) const;
   [[nodiscard]] std::vector<Pairing> Associate(const Reference& reference,
-                                               std::span<const core::AnchorRanges> measurements, bool los_only,
+                                               std::span<const core::RangeSet> measurements, bool los_only,
                                                double gate) const;
   // The reference without stage 1: the agent's predicted position.
   [[nodiscard]] Reference PriorReference() const;
@@ -389,7 +389,7 @@ class SlamTracker {
   // at_m from within the cone around a blocked anchor's direction.
   void MarkShadowed(std::vector<Pairing>& pairings, std::span<const Vec2> blocked_m, const Vec2& at_m) const;
   // Track-loss check after the update; restarts the agent and returns true when it was lost.
-  bool RecoverTrack(double t_s, std::span<const core::AnchorRanges> measurements);
+  bool RecoverTrack(double t_s, std::span<const core::RangeSet> measurements);
   // How far from where an amplitude law was formed it still holds: two window lengths, enough to
   // bridge an obstacle's shadow (m).
   [[nodiscard]] double LawReachM() const { return 2.0 * options_.variance.window_max_m; }

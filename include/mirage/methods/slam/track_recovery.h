@@ -29,7 +29,7 @@
 #include <string>
 #include <vector>
 
-#include "mirage/core/measurements.h"
+#include "mirage/core/records.h"
 #include "mirage/core/options_descriptor.h"
 #include "mirage/core/types.h"
 
@@ -106,13 +106,13 @@ struct MapPoint {
 };
 
 /// Map points with a measured range of their anchor within tolerance_m of the expected range.
-int CountMatches(const Vec2& p_m, std::span<const MapPoint> map, std::span<const core::AnchorRanges> measurements,
+int CountMatches(const Vec2& p_m, std::span<const MapPoint> map, std::span<const core::RangeSet> measurements,
                  double tolerance_m);
 
 /// Intersections of the LOS circles of every pair of anchors, each anchor's first
 /// `los_candidates` ranges tried as its LOS radius. Circles that miss each other by less than
 /// slack_m (noise; TrackRecoveryOptions::circle_slack_m) give the point between them.
-std::vector<Vec2> LosCandidates(std::span<const MapPoint> anchors, std::span<const core::AnchorRanges> measurements,
+std::vector<Vec2> LosCandidates(std::span<const MapPoint> anchors, std::span<const core::RangeSet> measurements,
                                 int los_candidates, double slack_m = TrackRecoveryOptions{}.circle_slack_m);
 
 /// Where to restart a lost track.
@@ -139,7 +139,7 @@ class TrackRecovery {
   /// plus the floor plan's VAs counted only where visible, as the tracker scores).
   std::optional<Restart> Check(double t_s, const Vec2& estimate_m, std::span<const MapPoint> anchors,
                                const std::function<int(const Vec2&)>& score_at,
-                               std::span<const core::AnchorRanges> measurements);
+                               std::span<const core::RangeSet> measurements);
 
  private:
   TrackRecoveryOptions options_;

@@ -34,7 +34,7 @@
 
 #include <Eigen/Core>
 
-#include "mirage/core/measurements.h"
+#include "mirage/core/records.h"
 #include "mirage/core/options_descriptor.h"
 #include "mirage/core/types.h"
 #include "mirage/methods/slam/discovery_sample.h"

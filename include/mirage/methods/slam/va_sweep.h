@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "mirage/core/measurements.h"
+#include "mirage/core/records.h"
 #include "mirage/core/options_descriptor.h"
 #include "mirage/core/types.h"
 #include "mirage/estimation/init/range_consensus.h"
