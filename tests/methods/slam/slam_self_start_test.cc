@@ -2,6 +2,7 @@
 // SLAM's start without a start point: a least-squares fix from three or more anchors, the floor
 // plan's search with two, and no start at all where two anchors and no plan leave the two
 // crossings of their range circles indistinguishable.
+#include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -19,7 +20,10 @@ World RoomWorld(const std::vector<Vec2>& anchors, bool with_plan) {
   World world;
   if (with_plan) world.floor_plan = mint::testing::SquareRoomWithPillar();
   for (std::size_t i = 0; i < anchors.size(); ++i) {
-    world.anchors.push_back({"A" + std::to_string(i + 1), Vec3(anchors[i].x(), anchors[i].y(), 0.0)});
+    // Appended, not "A" + std::to_string(...): GCC 12's -Wrestrict misfires on that at -O2.
+    std::string id = "A";
+    id += std::to_string(i + 1);
+    world.anchors.push_back({id, Vec3(anchors[i].x(), anchors[i].y(), 0.0)});
   }
   world.agents = {"agent"};
   world.physical.speed_mps = 0.5;
