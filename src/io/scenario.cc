@@ -192,6 +192,9 @@ void ReadChannel(YamlMap m, Experiment& e, const core::PhysicalKeys& keys) {
   e.self_coupling_db = m.NumberInRange("self_coupling_db", e.self_coupling_db, -300.0, 100.0, "dB");
   ReadOptions(m, channel::ChannelOptionsDescriptor(), keys, e.channel);
   e.channel.medium = e.medium;
+  // The checks against the pulse (Nyquist limit, samples per pulse, window of 8 pulses) are not
+  // in the descriptor (channel/cir_synthesizer.h): Validate() has them.
+  Check(e.channel, m);
 }
 
 // `measurements`: the model and its keys.
