@@ -112,7 +112,8 @@ void ReadMedium(YamlMap m, Experiment& e) {
 
 void ReadAnchors(YamlMap& root, bool recorded, Experiment& e) {
   std::set<std::string> ids;
-  for (auto& a : recorded ? std::vector<YamlMap>() : root.MapList("anchors", false)) {
+  // Optional: an anchorless method (coop) needs none, and a method that does says so below.
+  for (auto& a : recorded || !root.Has("anchors") ? std::vector<YamlMap>() : root.MapList("anchors", true)) {
     const std::string id = a.String("id");
     if (!ids.insert(id).second) a.Fail("id", "duplicate anchor id '" + id + "'");
     if (!IsPlainName(id)) a.Fail("id", "must not contain commas, quotes or line breaks (it goes into CSV files)");
