@@ -55,43 +55,61 @@ YAML::Node Find(const YAML::Node& document, const std::vector<PathStep>& steps) 
   return node;
 }
 
-// A copy of the tree's maps and sequences that shares the scalar nodes and the keys, so that the
-// lines of the file stay known for messages. (YAML::Clone would lose them.)
-YAML::Node CopyTree(const YAML::Node& node) {
+// A new map or list with the same entries as `node`, shared, not cloned: yaml-cpp keeps the
+// file's line only in the nodes it parsed (YAML::Clone and every new node lose it), so what a
+// variant does not change keeps its lines for messages.
+YAML::Node ShallowCopy(const YAML::Node& node) {
   if (node.IsMap()) {
     YAML::Node copy(YAML::NodeType::Map);
-    for (const auto& kv : node) copy.force_insert(kv.first, CopyTree(kv.second));
+    for (const auto& kv : node) copy.force_insert(kv.first, kv.second);
     return copy;
   }
-  if (node.IsSequence()) {
-    YAML::Node copy(YAML::NodeType::Sequence);
-    for (const auto& element : node) copy.push_back(CopyTree(element));
-    return copy;
-  }
-  return node;
+  YAML::Node copy(YAML::NodeType::Sequence);
+  for (const auto& element : node) copy.push_back(element);
+  return copy;
 }
 
-// Sets the value at `steps` in a tree made by CopyTree: the parent map (a copy of its own) gets
-// the new value node in place of the old one under the same key node and in the same place; the
-// shared scalar nodes are not touched. A list element is set by replacing the (copied) list.
-void SetValue(const YAML::Node& document, const std::vector<PathStep>& steps, const YAML::Node& value) {
-  std::vector<PathStep> parent_path(steps.begin(), steps.end() - 1);
-  const PathStep& last = steps.back();
-  YAML::Node parent = Find(document, parent_path);
-  YAML::Node new_value;
-  new_value.reset(value);
-  if (last.index >= 0) {
-    parent_path.push_back({last.key, -1});
-    const YAML::Node list = Find(document, parent_path);
-    YAML::Node replaced(YAML::NodeType::Sequence);
-    for (std::size_t i = 0; i < list.size(); ++i) replaced.push_back(static_cast<int>(i) == last.index ? value : list[i]);
-    new_value.reset(replaced);
-  }
-  // Rebuild the parent in its order, so that a variant equal to the base also prints equal.
+// Puts `value` under `key` of `map` in place of the old value, with the same key node and in the
+// same place, so that a variant equal to the base also prints equal.
+void Replace(YAML::Node& map, const std::string& key, const YAML::Node& value) {
   std::vector<std::pair<YAML::Node, YAML::Node>> entries;
-  for (const auto& kv : parent) entries.emplace_back(kv.first, kv.first.Scalar() == last.key ? new_value : kv.second);
-  for (const auto& [k, v] : entries) parent.remove(k);
-  for (const auto& [k, v] : entries) parent.force_insert(k, v);
+  for (const auto& kv : map) entries.emplace_back(kv.first, kv.first.Scalar() == key ? value : kv.second);
+  for (const auto& [k, v] : entries) map.remove(k);
+  for (const auto& [k, v] : entries) map.force_insert(k, v);
+}
+
+// Sets the value at `steps` in `document`, a variant's own root map whose entries the other
+// variants share: copy on write, every map and list on the path is replaced by a shallow copy of
+// its own before it changes, and nothing off the path is copied (so it keeps its lines). Stops
+// without a change where the path does not lead through maps and lists (an earlier key of the
+// same grid entry replaced a part of it); reading the variant then reports what it finds.
+void SetValue(YAML::Node& document, const std::vector<PathStep>& steps, const YAML::Node& value) {
+  YAML::Node map;  // moved with reset(): assigning to a yaml-cpp handle overwrites its node
+  map.reset(document);
+  for (std::size_t i = 0; i < steps.size(); ++i) {
+    const PathStep& step = steps[i];
+    const bool last = i + 1 == steps.size();
+    const YAML::Node& const_map = map;  // const lookup: non-const operator[] would insert
+    const YAML::Node child = const_map[step.key];
+    YAML::Node next, descend;
+    if (step.index < 0) {
+      if (!last && !child.IsMap()) return;
+      next.reset(last ? value : ShallowCopy(child));
+      descend.reset(next);
+    } else {
+      if (!child.IsSequence() || static_cast<std::size_t>(step.index) >= child.size()) return;
+      const YAML::Node element = child[static_cast<std::size_t>(step.index)];
+      if (!last && !element.IsMap()) return;
+      descend.reset(last ? value : ShallowCopy(element));
+      YAML::Node list(YAML::NodeType::Sequence);
+      for (std::size_t e = 0; e < child.size(); ++e) {
+        list.push_back(static_cast<int>(e) == step.index ? descend : child[e]);
+      }
+      next.reset(list);
+    }
+    Replace(map, step.key, next);
+    map.reset(descend);
+  }
 }
 
 std::string Text(const YAML::Node& value) {
@@ -105,7 +123,7 @@ std::string Text(const YAML::Node& value) {
 
 std::vector<GridVariant> ExpandGrid(const YAML::Node& document, const std::shared_ptr<const YamlOrigins>& origins) {
   if (!document["grid"]) return {{"", {}, document}};
-  YAML::Node base = CopyTree(document);
+  YAML::Node base = ShallowCopy(document);
   base.remove("grid");
   YamlMap root(document, "", origins);
   const std::string file = origins->FileOf("grid");
@@ -135,7 +153,7 @@ std::vector<GridVariant> ExpandGrid(const YAML::Node& document, const std::share
     }
     for (std::size_t k = 0; k < count; ++k) {
       GridVariant v;
-      v.document = CopyTree(base);
+      v.document = ShallowCopy(base);
       std::size_t rest = k;
       std::vector<std::size_t> at(axes.size());
       for (std::size_t a = axes.size(); a-- > 0;) {
