@@ -316,6 +316,11 @@ Experiment ReadExperiment(YamlMap& root, const std::string& file, const methods:
   }
 
   ReadMeasurements(root.OptionalMap("measurements"), e, files, pipeline::PhysicalKeysOf(e));
+  if (files && !files->truth && !e.start_m && !method->self_initializes) {
+    YamlMap measurements = root.OptionalMap("measurements");
+    measurements.Fail("start_m", "missing: without a truth file method '" + method->name +
+                                     "' needs its start position [x, y] (m); it cannot start itself");
+  }
   if (files) LoadRecordedData(file, *files, e);
   const core::PhysicalKeys keys = pipeline::PhysicalKeysOf(e);
   ReadChannel(root.OptionalMap("channel"), e, keys);

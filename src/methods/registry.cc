@@ -61,6 +61,7 @@ std::vector<MethodInfo> BuiltIn() {
         "range_ekf", "a 3-D range EKF (or planar at a known height) with a chi-square gate: the plain baseline",
         "textbook EKF with a constant-velocity model", range_ekf::RangeEkfOptionsDescriptor());
     m.start_sigma_m = [](const void* o) { return static_cast<const range_ekf::RangeEkfOptions*>(o)->initial_position_sigma_m; };
+    m.self_initializes = true;
     out.push_back(std::move(m));
   }
   return out;

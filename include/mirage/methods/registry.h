@@ -34,6 +34,9 @@ struct MethodInfo {
   MethodInput input = MethodInput::kRangeSets;
   /// One estimator tracks all walking agents together; otherwise one run per trajectory.
   bool joint = false;
+  /// The estimator can start itself from the first epochs (Estimator::InitializeFromEpoch), so
+  /// recorded data without truth need no start position.
+  bool self_initializes = false;
   const core::OptionsDescriptorBase* descriptor = nullptr;
   /// A default-constructed options struct (the defaults: its member initialisers).
   std::function<std::shared_ptr<void>()> make_options;
