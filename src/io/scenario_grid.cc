@@ -57,15 +57,16 @@ YAML::Node Find(const YAML::Node& document, const std::vector<PathStep>& steps) 
 
 // A new map or list with the same entries as `node`, shared, not cloned: yaml-cpp keeps the
 // file's line only in the nodes it parsed (YAML::Clone and every new node lose it), so what a
-// variant does not change keeps its lines for messages.
+// variant does not change keeps its lines for messages. The copy keeps the flow or block style,
+// so that a variant equal to another also prints equal (repeats are found by their text).
 YAML::Node ShallowCopy(const YAML::Node& node) {
+  YAML::Node copy(node.IsMap() ? YAML::NodeType::Map : YAML::NodeType::Sequence);
   if (node.IsMap()) {
-    YAML::Node copy(YAML::NodeType::Map);
     for (const auto& kv : node) copy.force_insert(kv.first, kv.second);
-    return copy;
+  } else {
+    for (const auto& element : node) copy.push_back(element);
   }
-  YAML::Node copy(YAML::NodeType::Sequence);
-  for (const auto& element : node) copy.push_back(element);
+  copy.SetStyle(node.Style());
   return copy;
 }
 
@@ -105,6 +106,7 @@ void SetValue(YAML::Node& document, const std::vector<PathStep>& steps, const YA
       for (std::size_t e = 0; e < child.size(); ++e) {
         list.push_back(static_cast<int>(e) == step.index ? descend : child[e]);
       }
+      list.SetStyle(child.Style());
       next.reset(list);
     }
     Replace(map, step.key, next);
