@@ -138,8 +138,30 @@ YAML::Node LoadYamlString(const std::string& text, const std::string& name) {
   }
 }
 
+namespace {
+
+// The line of the key node of `key` in `map` (null when there is none).
+YAML::Mark KeyMark(const YAML::Node& map, const std::string& key) {
+  if (!map.IsMap()) return YAML::Mark::null_mark();
+  for (const auto& kv : map) {
+    if (kv.first.IsScalar() && kv.first.Scalar() == key) return kv.first.Mark();
+  }
+  return YAML::Mark::null_mark();
+}
+
+// The node's line, else `fallback`. yaml-cpp keeps lines only in the nodes it parsed: the maps
+// and lists a grid variant copies (scenario_grid.cc) and the empty map of an absent optional
+// section have none, and a message then names the line of their key or of the enclosing map.
+YAML::Mark MarkOr(const YAML::Mark& mark, const YAML::Mark& fallback) { return mark.is_null() ? fallback : mark; }
+YAML::Mark MarkOr(const YAML::Node& node, const YAML::Mark& fallback) { return MarkOr(node.Mark(), fallback); }
+
+}  // namespace
+
 YamlMap::YamlMap(YAML::Node node, std::string path, std::shared_ptr<const YamlOrigins> origins)
-    : node_(std::move(node)), path_(std::move(path)), origins_(std::move(origins)) {
+    : YamlMap(std::move(node), std::move(path), std::move(origins), YAML::Mark::null_mark()) {}
+
+YamlMap::YamlMap(YAML::Node node, std::string path, std::shared_ptr<const YamlOrigins> origins, const YAML::Mark& fallback)
+    : node_(std::move(node)), path_(std::move(path)), origins_(std::move(origins)), mark_(MarkOr(node_, fallback)) {
   if (!node_.IsMap()) {
     throw InputError(fmt::format("{}: {}: expected a map of keys, got {}", Where(node_, path_),
                                  path_.empty() ? "document" : path_, ScalarText(node_)));
@@ -151,9 +173,13 @@ bool YamlMap::Has(const std::string& key) const { return static_cast<bool>(node_
 
 std::string YamlMap::KeyPath(const std::string& key) const { return JoinPath(path_, key); }
 
+YAML::Mark YamlMap::ChildMark(const YAML::Node& value, const std::string& key) const {
+  return MarkOr(value, MarkOr(KeyMark(node_, key), mark_));
+}
+
 std::string YamlMap::Where(const YAML::Node& node, const std::string& key_path) const {
   const std::string& file = origins_->FileOf(key_path);
-  const auto mark = node.Mark();
+  const auto mark = MarkOr(node, mark_);
   if (mark.is_null()) return file;
   return fmt::format("{}:{}", file, mark.line + 1);
 }
@@ -164,16 +190,21 @@ void YamlMap::Fail(const std::string& key, const std::string& message) const {
   // Node::reset rebinds; operator= would overwrite the referenced node inside the document.
   YAML::Node at;
   at.reset(node_);
+  YAML::Mark mark = mark_;
   std::size_t begin = 0;
   while (begin <= key.size()) {
     const auto dot = std::min(key.find('.', begin), key.size());
     const YAML::Node& map = at;  // const lookup: non-const operator[] would insert
-    const YAML::Node child = map.IsMap() ? map[key.substr(begin, dot - begin)] : YAML::Node();
+    const std::string part = key.substr(begin, dot - begin);
+    const YAML::Node child = map.IsMap() ? map[part] : YAML::Node();
     if (!child) break;
+    mark = MarkOr(child, MarkOr(KeyMark(map, part), mark));
     at.reset(child);
     begin = dot + 1;
   }
-  throw InputError(fmt::format("{}: {}: {}", Where(at, KeyPath(key)), KeyPath(key), message));
+  const std::string& file = origins_->FileOf(KeyPath(key));
+  const std::string where = mark.is_null() ? file : fmt::format("{}:{}", file, mark.line + 1);
+  throw InputError(fmt::format("{}: {}: {}", where, KeyPath(key), message));
 }
 
 void YamlMap::FailProblem(const std::string& problem) const {
@@ -324,13 +355,13 @@ std::vector<Vec2> YamlMap::Points(const std::string& key, std::size_t min_count)
 YamlMap YamlMap::Map(const std::string& key) {
   const YAML::Node n = Get(key);
   if (!n) Fail(key, "missing (required)");
-  return YamlMap(n, KeyPath(key), origins_);
+  return YamlMap(n, KeyPath(key), origins_, ChildMark(n, key));
 }
 
 YamlMap YamlMap::OptionalMap(const std::string& key) {
   const YAML::Node n = Get(key);
-  if (!n) return YamlMap(YAML::Node(YAML::NodeType::Map), KeyPath(key), origins_);
-  return YamlMap(n, KeyPath(key), origins_);
+  if (!n) return YamlMap(YAML::Node(YAML::NodeType::Map), KeyPath(key), origins_, mark_);
+  return YamlMap(n, KeyPath(key), origins_, ChildMark(n, key));
 }
 
 std::vector<YamlMap> YamlMap::MapList(const std::string& key, bool allow_empty) {
@@ -339,7 +370,10 @@ std::vector<YamlMap> YamlMap::MapList(const std::string& key, bool allow_empty) 
   if (!n.IsSequence()) Fail(key, "expected a list, got " + ScalarText(n));
   if (!allow_empty && n.size() == 0) Fail(key, "expected at least one entry");
   std::vector<YamlMap> maps;
-  for (std::size_t i = 0; i < n.size(); ++i) maps.emplace_back(n[i], fmt::format("{}[{}]", KeyPath(key), i), origins_);
+  const YAML::Mark list_mark = ChildMark(n, key);
+  for (std::size_t i = 0; i < n.size(); ++i) {
+    maps.push_back(YamlMap(n[i], fmt::format("{}[{}]", KeyPath(key), i), origins_, list_mark));
+  }
   return maps;
 }
 

@@ -113,10 +113,16 @@ class YamlMap {
   // The node's number (possibly not finite), or empty when it is not a number.
   [[nodiscard]] static std::optional<double> ParseNumber(const YAML::Node& node);
   [[nodiscard]] YAML::Node OptionalNonEmptyList(const std::string& key);
+  // `fallback`: where the map is when its node has no line of its own (an absent optional map,
+  // or a map a grid variant copied).
+  YamlMap(YAML::Node node, std::string path, std::shared_ptr<const YamlOrigins> origins, const YAML::Mark& fallback);
+  // The line of the value at `key` (its own, else its key's, else this map's) for a child map.
+  [[nodiscard]] YAML::Mark ChildMark(const YAML::Node& value, const std::string& key) const;
 
   YAML::Node node_;
   std::string path_;
   std::shared_ptr<const YamlOrigins> origins_;
+  YAML::Mark mark_;  ///< the map's line for messages: its node's, else the fallback it was given
   std::set<std::string> used_;
 };
 
