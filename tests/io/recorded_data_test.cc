@@ -49,8 +49,14 @@ TEST(RecordedData, ParsesAnchorsWithOptionalHeight) {
   EXPECT_DOUBLE_EQ(r.anchors_m[0].x(), 0.5);
   EXPECT_DOUBLE_EQ(r.anchors_m[1].x(), 0.1);
   EXPECT_DOUBLE_EQ(r.anchors_m[1].y(), -2.0);
-  ASSERT_TRUE(r.anchor_heights_m[0].has_value());
-  EXPECT_DOUBLE_EQ(*r.anchor_heights_m[0], 2.1);
+  EXPECT_TRUE(r.anchors_have_z);
+  EXPECT_DOUBLE_EQ(r.anchors_m[0].z(), 2.1);
+}
+
+TEST(RecordedData, PutsAnchorsWithoutHeightOnTheFloor) {
+  const auto r = WithAnchors();
+  EXPECT_FALSE(r.anchors_have_z);
+  EXPECT_EQ(r.anchors_m[1], Vec3(5.2, 2.3, 0.0));
 }
 
 TEST(RecordedData, GroupsRowsByTimeIntoStepsWithSeveralRangesPerAnchor) {
@@ -78,11 +84,21 @@ TEST(RecordedData, GroupsRowsByTimeIntoStepsWithSeveralRangesPerAnchor) {
 TEST(RecordedData, TruthIsInterpolatedBetweenSamples) {
   auto r = WithAnchors();
   ParseTruthCsv("t_s,x_m,y_m\n0,1,1\n1,3,1\n", "truth.csv", r);
+  EXPECT_FALSE(r.truth_has_z);
   ASSERT_TRUE(r.TruthAt(0.25).has_value());
   EXPECT_DOUBLE_EQ(r.TruthAt(0.25)->x(), 1.5);
+  EXPECT_DOUBLE_EQ(r.TruthAt(0.25)->z(), 0.0);
   EXPECT_DOUBLE_EQ(r.TruthAt(1.0)->x(), 3.0);
   EXPECT_FALSE(r.TruthAt(1.5).has_value());
   EXPECT_FALSE(r.TruthAt(-0.1).has_value());
+}
+
+TEST(RecordedData, InterpolatesTheTruthsHeightToo) {
+  auto r = WithAnchors();
+  ParseTruthCsv("t_s,x_m,y_m,z_m\n0,1,1,0.5\n1,3,1,1.5\n", "truth.csv", r);
+  EXPECT_TRUE(r.truth_has_z);
+  ASSERT_TRUE(r.TruthAt(0.25).has_value());
+  EXPECT_DOUBLE_EQ(r.TruthAt(0.25)->z(), 0.75);
 }
 
 struct BadCase {
@@ -158,7 +174,6 @@ class RecordedFiles : public ::testing::Test {
 
 TEST_F(RecordedFiles, WriteThenLoadGivesTheSameDoubles) {
   pipeline::Recording r = WithAnchors();
-  r.anchor_heights_m.assign(2, std::nullopt);
   for (int k = 0; k < 5; ++k) {
     pipeline::RecordedStep step;
     step.t_s = 0.1 * k;  // 0.30000000000000004 must come back exactly
@@ -168,7 +183,7 @@ TEST_F(RecordedFiles, WriteThenLoadGivesTheSameDoubles) {
     step.anchors[1].anchor_index = 1;
     step.anchors[1].ranges = {{std::sqrt(2.0), 1e-300}};
     r.steps.push_back(step);
-    r.truth.push_back({step.t_s, Vec2(std::exp(1.0), -1.0 / 7.0 * k)});
+    r.truth.push_back({step.t_s, Vec3(std::exp(1.0), -1.0 / 7.0 * k, 0.0)});
   }
   WriteRecording(dir_.string(), r);
   const auto back = LoadRecording({(dir_ / "anchors.csv").string(), (dir_ / "ranges.csv").string(),
@@ -185,6 +200,32 @@ TEST_F(RecordedFiles, WriteThenLoadGivesTheSameDoubles) {
     }
     EXPECT_EQ(back.truth[k].position_m, r.truth[k].position_m);
   }
+}
+
+TEST_F(RecordedFiles, WriteThenLoadKeepsTheHeightsOfAThreeDimensionalRecording) {
+  pipeline::Recording r = WithAnchors();
+  r.anchors_m[0].z() = 2.9;
+  r.anchors_have_z = true;
+  r.truth_has_z = true;
+  for (int k = 0; k < 2; ++k) {
+    pipeline::RecordedStep step;
+    step.t_s = 0.1 * k;
+    step.anchors.resize(2);
+    step.anchors[0].anchor_index = 0;
+    step.anchors[0].ranges = {{3.0, std::nullopt}};
+    step.anchors[1].anchor_index = 1;
+    r.steps.push_back(step);
+    r.truth.push_back({step.t_s, Vec3(1.0, 2.0, 0.6 + 0.1 * k)});
+  }
+  WriteRecording(dir_.string(), r);
+  const auto back = LoadRecording({(dir_ / "anchors.csv").string(), (dir_ / "ranges.csv").string(),
+                                   (dir_ / "truth.csv").string()});
+  EXPECT_TRUE(back.anchors_have_z);
+  EXPECT_TRUE(back.truth_has_z);
+  EXPECT_EQ(back.anchors_m[0], Vec3(0.5, 7.0, 2.9));
+  EXPECT_EQ(back.anchors_m[1], Vec3(5.2, 2.3, 0.0));
+  ASSERT_EQ(back.truth.size(), 2u);
+  EXPECT_EQ(back.truth[1].position_m, r.truth[1].position_m);
 }
 
 TEST_F(RecordedFiles, TruthMustCoverEveryStep) {

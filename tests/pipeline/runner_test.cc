@@ -28,7 +28,7 @@ void ExpectVecNear(const Vec2& actual, const Vec2& expected, double tol) {
   EXPECT_NEAR(actual.y(), expected.y(), tol);
 }
 
-ExperimentResult Run(const io::Scenario& scenario, const Progress& progress = {}) {
+ExperimentResult RunAll(const io::Scenario& scenario, const Progress& progress = {}) {
   return RunExperiment(scenario.variants, progress);
 }
 
@@ -58,8 +58,8 @@ TEST(RunOffset, WrapsAroundAfterTheLastGridPointAndHandlesOtherGrids) {
 
 TEST(RunExperiment, GivesIdenticalResultsOnOneAndTwoThreads) {
   // 2 runs per trajectory, 4 runs plus 2 bound jobs, so two threads really interleave.
-  const auto a = Run(ShortSeminarRoom(2, 1.5, 1));
-  const auto b = Run(ShortSeminarRoom(2, 1.5, 2));
+  const auto a = RunAll(ShortSeminarRoom(2, 1.5, 1));
+  const auto b = RunAll(ShortSeminarRoom(2, 1.5, 2));
 
   ASSERT_EQ(a.runs.size(), b.runs.size());
   for (std::size_t r = 0; r < a.runs.size(); ++r) {
@@ -87,8 +87,8 @@ TEST(RunExperiment, DependsOnTheSeed) {
   auto second = ShortSeminarRoom(1, 1.0);
   MutableExperiment(second).seed = ExperimentOf(first).seed + 1;
 
-  const auto a = Run(first);
-  const auto b = Run(second);
+  const auto a = RunAll(first);
+  const auto b = RunAll(second);
 
   ASSERT_FALSE(a.runs.empty());
   EXPECT_NE(a.runs[0].agents.front().steps.back().estimate_m, b.runs[0].agents.front().steps.back().estimate_m);
@@ -99,7 +99,7 @@ TEST(RunExperiment, OrdersRunsByTrajectoryThenRunWithTheirGridOffsetsAndReportsP
   const Experiment& e = ExperimentOf(scenario);
   int progress_calls = 0, last_total = 0;
 
-  const auto result = Run(scenario, [&](int, int total) {
+  const auto result = RunAll(scenario, [&](int, int total) {
     ++progress_calls;
     last_total = total;
   });
@@ -131,7 +131,7 @@ TEST(RunExperiment, TracksTheShortSeminarRoomWithinTenCentimetresAtP90) {
   // 1 run per trajectory, the first 2 m (40 steps) of each; seed from the file. The full example
   // reaches about 3 cm (README).
   auto scenario = ShortSeminarRoom(1, 2.0);
-  const auto result = Run(scenario);
+  const auto result = RunAll(scenario);
   const auto summary = Summarize(scenario.variants, result);
 
   const auto& overall = summary.front().overall;
@@ -149,8 +149,8 @@ TEST(RunExperiment, StartsAtAPerturbedPositionWhenAsked) {
   auto perturbed = ShortSeminarRoom(1, 0.5);
   MutableExperiment(perturbed).perturb_initial_position = true;
 
-  const auto a = Run(exact);
-  const auto b = Run(perturbed);
+  const auto a = RunAll(exact);
+  const auto b = RunAll(perturbed);
 
   // The first estimate is the start after one update; a draw with sigma_i = 10 cm moves it.
   EXPECT_NE(a.runs[0].agents.front().steps.front().estimate_m, b.runs[0].agents.front().steps.front().estimate_m);
@@ -173,7 +173,7 @@ TEST(RunExperiment, DrawsAPerturbedStartWithTheMethodsOwnInitialSigma) {
   for (auto& t : MutableExperiment(scenario).trajectories) t.waypoints_m = testing::TruncatePolyline(t.waypoints_m, 0.5);
   EXPECT_DOUBLE_EQ(ExperimentOf(scenario).method.start_sigma_m, 1e-4);
 
-  const auto result = Run(scenario);
+  const auto result = RunAll(scenario);
 
   for (const auto& run : result.runs) {
     EXPECT_LT(*run.agents.front().steps.front().error_m, 0.01) << "trajectory " << run.group << " run " << run.run;
@@ -241,8 +241,8 @@ TEST(RunExperiment, RangeLevelRunsRecordTheSamePathTruthAndBoundAsCirRuns) {
   auto ranges = ShortSeminarRoom(1, 1.0);
   MutableExperiment(ranges).measurement_model = MeasurementModel::kRangeLevel;
 
-  const auto a = Run(cir);
-  const auto b = Run(ranges);
+  const auto a = RunAll(cir);
+  const auto b = RunAll(ranges);
 
   ASSERT_EQ(a.runs.size(), b.runs.size());
   for (std::size_t r = 0; r < a.runs.size(); ++r) {
@@ -256,7 +256,9 @@ TEST(RunExperiment, RangeLevelRunsRecordTheSamePathTruthAndBoundAsCirRuns) {
     const auto& sb = b.runs[r].agents.front().steps;
     for (std::size_t k = 0; k < sa.size(); ++k) {
       ASSERT_EQ(sa[k].bound_m.has_value(), sb[k].bound_m.has_value());
-      if (sa[k].bound_m) EXPECT_DOUBLE_EQ(*sa[k].bound_m, *sb[k].bound_m);
+      if (sa[k].bound_m) {
+        EXPECT_DOUBLE_EQ(*sa[k].bound_m, *sb[k].bound_m);
+      }
     }
   }
 }
