@@ -15,7 +15,7 @@
 
 namespace mirage::io {
 
-/// Parses anchors.csv into recording.anchor_ids / anchors_m / anchor_heights_m.
+/// Parses anchors.csv into recording.anchor_ids / anchors_m / anchors_have_z.
 /// @param file the name used in messages
 void ParseAnchorsCsv(std::string_view text, const std::string& file, pipeline::Recording& recording);
 
