@@ -383,7 +383,7 @@ Scenario LoadScenario(const std::string& path, const ScenarioOverrides& override
     RejectOldLayout(root, scenario.document);
   }
   for (GridVariant& g : ExpandGrid(scenario.document, origins)) {
-    YamlMap root(g.document, "", origins);
+    YamlMap root(g.document, "", g.origins);
     std::optional<RecordingFiles> files;
     pipeline::Variant v;
     v.name = g.name;

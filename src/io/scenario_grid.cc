@@ -124,7 +124,7 @@ std::string Text(const YAML::Node& value) {
 }  // namespace
 
 std::vector<GridVariant> ExpandGrid(const YAML::Node& document, const std::shared_ptr<const YamlOrigins>& origins) {
-  if (!document["grid"]) return {{"", {}, document}};
+  if (!document["grid"]) return {{"", {}, document, origins}};
   YAML::Node base = ShallowCopy(document);
   base.remove("grid");
   YamlMap root(document, "", origins);
@@ -156,6 +156,7 @@ std::vector<GridVariant> ExpandGrid(const YAML::Node& document, const std::share
     for (std::size_t k = 0; k < count; ++k) {
       GridVariant v;
       v.document = ShallowCopy(base);
+      auto variant_origins = std::make_shared<YamlOrigins>(*origins);
       std::size_t rest = k;
       std::vector<std::size_t> at(axes.size());
       for (std::size_t a = axes.size(); a-- > 0;) {
@@ -166,9 +167,11 @@ std::vector<GridVariant> ExpandGrid(const YAML::Node& document, const std::share
         const YAML::Node value = axes[a].second[at[a]];
         // The grid entry's own node: messages about the value name its line.
         SetValue(v.document, ParsePath(axes[a].first), value);
+        variant_origins->Set(axes[a].first, file);
         v.overrides.emplace_back(axes[a].first, Text(value));
         v.name += (v.name.empty() ? "" : ", ") + axes[a].first + "=" + Text(value);
       }
+      v.origins = std::move(variant_origins);
       YAML::Emitter emitted;
       emitted << v.document;
       const std::string text = emitted.c_str();

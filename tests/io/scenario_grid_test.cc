@@ -63,6 +63,7 @@ TEST(ExpandGrid, WithoutAGridGivesTheDocumentAsOneUnnamedVariant) {
   EXPECT_EQ(variants[0].name, "");
   EXPECT_TRUE(variants[0].overrides.empty());
   EXPECT_TRUE(variants[0].document.is(document));
+  EXPECT_NE(variants[0].origins, nullptr);
 }
 
 TEST(ExpandGrid, CrossesTheListsOfAnEntryWithTheLastKeyVaryingFastest) {
@@ -185,6 +186,24 @@ TEST(ExpandGrid, GivesAValueItSetsTheLineOfTheGridEntry) {
   ASSERT_EQ(variants.size(), 2u);
   EXPECT_EQ(variants[0].document["agents"].Mark().line, 10);
   EXPECT_EQ(variants[1].document["trajectories"][0]["waypoints_m"].Mark().line, 11);
+}
+
+TEST(ExpandGrid, NamesTheFileOfTheGridForTheValuesItSets) {
+  // Arrange: the document as merged from base.yaml and a child that adds the grid.
+  auto origins = std::make_shared<YamlOrigins>("base.yaml");
+  origins->Set("grid", "child.yaml");
+  const YAML::Node document = LoadYamlString(std::string(kBase) + "grid:\n  - trajectories[1].speed_mps: [0.1]\n", "x");
+
+  // Act
+  const auto variants = ExpandGrid(document, origins);
+
+  // Assert: the value set comes from the child; its neighbours and the base stay the base's.
+  ASSERT_EQ(variants.size(), 1u);
+  ASSERT_NE(variants[0].origins, nullptr);
+  EXPECT_EQ(variants[0].origins->FileOf("trajectories[1].speed_mps"), "child.yaml");
+  EXPECT_EQ(variants[0].origins->FileOf("trajectories[1].name"), "base.yaml");
+  EXPECT_EQ(variants[0].origins->FileOf("agents"), "base.yaml");
+  EXPECT_EQ(origins->FileOf("trajectories[1].speed_mps"), "base.yaml");
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -775,6 +775,12 @@ TEST_F(ScenarioFiles, NamesTheOverridingFileForABadMaterial) {
   ExpectError(ErrorOf(path), path, 3, {"materials.glass", "(0, 1]"});
 }
 
+TEST_F(ScenarioFiles, NamesTheFileOfTheGridForABadValueItSets) {
+  // The key's base value is in the example; the bad value, and so the message, in this file.
+  const std::string path = Override("bad_grid_value.yaml", "grid:\n  - trajectories[1].speed_mps: [0.5, -1]\n");
+  ExpectError(ErrorOf(path), path, 3, {"trajectories[1].speed_mps", "-1 m/s must be > 0 m/s"});
+}
+
 TEST_F(ScenarioFiles, NamesTheOverridingFileForABadMethodOption) {
   const std::string path = Override("bad_method.yaml", "method:\n  motion:\n    accel_sigma_mps2: 0\n");
   ExpectError(ErrorOf(path), path, 4, {"method.motion.accel_sigma_mps2", "out of range"});

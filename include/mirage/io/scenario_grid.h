@@ -23,6 +23,9 @@ struct GridVariant {
   std::string name;  ///< "key=value, key=value" (empty without a grid)
   std::vector<std::pair<std::string, std::string>> overrides;
   YAML::Node document;
+  /// Which file each key path of `document` came from: the scenario's, with the values the
+  /// variant sets from the file that wrote the grid (messages name it with the grid's line).
+  std::shared_ptr<const YamlOrigins> origins;
 };
 
 /// Most variants a grid may give (a valid-looking file must not exhaust the machine).
