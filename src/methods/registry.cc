@@ -31,6 +31,7 @@ std::vector<MethodInfo> BuiltIn() {
         "mint", "multipath-assisted tracking with a known floor plan: ranges to virtual anchors in an EKF",
         "Lafer 2014 ch. 3", mint::MintOptionsDescriptor());
     m.start_sigma_m = [](const void* o) { return static_cast<const mint::MintOptions*>(o)->initial_position_sigma_m; };
+    m.self_initializes = true;  // SearchFloorPlan, confirmed by the next epoch
     out.push_back(std::move(m));
   }
   {
@@ -38,6 +39,7 @@ std::vector<MethodInfo> BuiltIn() {
         "slam", "multipath SLAM: virtual anchors in the EKF state, discovered from unexplained ranges",
         "Leitinger et al.; Lafer 2014 ch. 4", slam::SlamOptionsDescriptor());
     m.start_sigma_m = [](const void* o) { return static_cast<const slam::SlamOptions*>(o)->initial_position_sigma_m; };
+    m.self_initializes = true;  // an anchor fix, else the floor-plan search
     out.push_back(std::move(m));
   }
   {
