@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
-# The SLAM tracker's walker speed limit (slam.max_speed_mps) on the run that needed it: seminar
+# The SLAM tracker's walker speed limit (method.max_speed_mps) on the run that needed it: seminar
 # room, seed 30, trajectory 2, run 19, replayed from `mirage simulate`. The track-loss recovery
 # restarts that track 1 m off at step 164 (pillar's shadow). With the limit the track stays within
 # the recovery's reach (max_jump_m, 3 m) and is restarted right (not diverged); without it, it
@@ -29,7 +29,7 @@ if ! "$mirage" simulate "$examples/seminar_room_slam.yaml" --seed 30 --trajector
   echo "FAIL mirage simulate failed"
   exit 1
 fi
-printf 'extends: scenario.yaml\nslam: {max_speed_mps: 0}\n' >"$work/run/no_limit.yaml"
+printf 'extends: scenario.yaml\nmethod: {max_speed_mps: 0}\n' >"$work/run/no_limit.yaml"
 
 # json_number FILE KEY: the first value of "KEY": in the report (the trajectory's, as it has one).
 json_number() {
