@@ -95,7 +95,8 @@ fi
 # Progress on a non-terminal stderr, and the closing line naming every file written.
 "$mirage" run "$examples/seminar_room.yaml" --runs 1 --json "$work/p/report.json" --csv "$work/p/csv" \
   >/dev/null 2>"$work/progress.err"
-if grep -q "^mirage: 2/2 runs done" "$work/progress.err" &&
+# The jobs: per trajectory (2) the posterior bound and the one run.
+if grep -q "^mirage: 4/4 jobs done" "$work/progress.err" &&
   grep -q "^mirage: wrote $work/p/report.json, $work/p/csv/tracks.csv, $work/p/csv/runs.csv" "$work/progress.err"; then
   ok "progress and closing lines on a non-terminal stderr"
 else
