@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
 # Bad scenario files make `mirage run` fail with one line "mirage: error: FILE:LINE: KEY: ..." and
-# a non-zero exit status (README.md, STYLE.md Sec. 9).
+# exit status 2, that of bad input (README.md, STYLE.md Sec. 9).
 # Usage: bad_input_test.sh MIRAGE_BINARY BAD_DIR
 # Each BAD_DIR/*.yaml states what it expects in its header comments:
 #   # expect: <text the message must contain, usually the key path>
@@ -31,8 +31,8 @@ check() {
   local base
   base=$(basename "$file")
   local problem=""
-  if [[ $status -eq 0 ]]; then
-    problem="exit status 0, expected non-zero"
+  if [[ $status -ne 2 ]]; then
+    problem="exit status $status, expected 2 (bad input)"
   elif [[ $(wc -l <"$work/stderr") -ne 1 ]]; then
     problem="stderr has $(wc -l <"$work/stderr") lines, expected 1"
   elif [[ $err != "mirage: error: "* ]]; then
