@@ -989,6 +989,24 @@ TEST_F(ScenarioFiles, NamesATrajectoryShorterThanOneStep) {
   ExpectError(ErrorOf(path), path, 14, {"trajectories[0].waypoints_m", "shorter than one step"});
 }
 
+TEST_F(ScenarioFiles, ReadsSelfStartAndATurnRadius) {
+  const std::string path = Write("self_start.yaml", TinyWithLine(15, "    dt_s: 0.1\n    turn_radius_m: 0.2\nself_start: true"));
+  const Experiment e = ExperimentOf(LoadScenario(path));
+  EXPECT_TRUE(e.self_start);
+  EXPECT_DOUBLE_EQ(e.trajectories[0].turn_radius_m, 0.2);
+  // The defaults: start from the truth, turn at the waypoints.
+  const Experiment tiny = ExperimentOf(LoadScenario(Write("tiny.yaml", kTiny)));
+  EXPECT_FALSE(tiny.self_start);
+  EXPECT_DOUBLE_EQ(tiny.trajectories[0].turn_radius_m, 0.0);
+}
+
+TEST_F(ScenarioFiles, NamesABadSelfStartAndANegativeTurnRadius) {
+  const std::string start = Write("self_start.yaml", TinyWithLine(15, "    dt_s: 0.1\nself_start: maybe"));
+  ExpectError(ErrorOf(start), start, 16, {"self_start", "expected true or false"});
+  const std::string radius = Write("radius.yaml", TinyWithLine(15, "    dt_s: 0.1\n    turn_radius_m: -0.5"));
+  ExpectError(ErrorOf(radius), radius, 16, {"trajectories[0].turn_radius_m", "out of range"});
+}
+
 TEST_F(ScenarioFiles, NamesATrajectoryLegThroughAnObstacle) {
   const std::string path = Write("leg_through_pillar.yaml", TinyWithLine(14, "    waypoints_m: [[0.5, 2.0], [3.5, 2.0]]"));
   ExpectError(ErrorOf(path), path, 14, {"trajectories[0].waypoints_m", "crosses a wall or an obstacle"});
