@@ -571,7 +571,8 @@ TEST_F(ScenarioFiles, ReadsTheSweepKeys) {
                                          "      window_s: 4.0\n      every_steps: 10\n"
                                          "      min_baseline_m: 1.5\n      gate_m: 0.03\n"
                                          "      min_support_fraction: 0.7\n");
-  const auto& sweep = Slam(ExperimentOf(LoadScenario(path))).discovery.sweep;
+  const Scenario scenario = LoadScenario(path);  // kept: the options live in it
+  const auto& sweep = Slam(ExperimentOf(scenario)).discovery.sweep;
   EXPECT_FALSE(sweep.enabled);
   EXPECT_DOUBLE_EQ(sweep.window_s, 4.0);
   EXPECT_EQ(sweep.every_steps, 10);
@@ -588,7 +589,8 @@ TEST_F(ScenarioFiles, ReadsTheSlamGateAndVarianceKeys) {
                                          "  amplitude_gate_probability: 0.01\n  blocked_amplitude_probability: 0.2\n"
                                          "  nis_window_updates: 7\n  discovered_va_walk_m_per_sqrt_s: 0.004\n"
                                          "  startup_amplitude_k_factor: 3\n");
-  const auto& slam = Slam(ExperimentOf(LoadScenario(path)));
+  const Scenario scenario = LoadScenario(path);  // kept: the options live in it
+  const auto& slam = Slam(ExperimentOf(scenario));
   EXPECT_DOUBLE_EQ(slam.innovation_gate_chi2, 6.0);
   EXPECT_DOUBLE_EQ(slam.no_visibility_model_gate_chi2, 2.5);
   EXPECT_DOUBLE_EQ(slam.amplitude_gate_probability, 0.01);
