@@ -89,7 +89,10 @@ TEST_P(DerivedDefaults, EveryFormulaNeedsOnlyPhysicalKeysAndEvaluatesWhenAllAreK
 }
 
 INSTANTIATE_TEST_SUITE_P(SlamAndMint, DerivedDefaults,
-                         ::testing::Values(&slam::SlamOptionsDescriptor(), &mint::MintOptionsDescriptor()));
+                         ::testing::Values(&slam::SlamOptionsDescriptor(), &mint::MintOptionsDescriptor()),
+                         // Named by method, not by the pointer's value: ctest's names stay the same
+                         // from build to build.
+                         [](const auto& info) { return info.index == 0 ? std::string("slam") : std::string("mint"); });
 
 TEST(SlamDerivedDefaults, SpeedDerivedLimitsAreTheSeminarValues) {
   const auto f = DerivedFields(slam::SlamOptionsDescriptor());
