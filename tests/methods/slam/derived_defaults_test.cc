@@ -92,7 +92,7 @@ INSTANTIATE_TEST_SUITE_P(SlamAndMint, DerivedDefaults,
                          ::testing::Values(&slam::SlamOptionsDescriptor(), &mint::MintOptionsDescriptor()),
                          // Named by method, not by the pointer's value: ctest's names stay the same
                          // from build to build.
-                         [](const auto& info) { return info.index == 0 ? std::string("slam") : std::string("mint"); });
+                         [](const auto& param_info) { return param_info.index == 0 ? std::string("slam") : std::string("mint"); });
 
 TEST(SlamDerivedDefaults, SpeedDerivedLimitsAreTheSeminarValues) {
   const auto f = DerivedFields(slam::SlamOptionsDescriptor());
