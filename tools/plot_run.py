@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: MIT
 """Renders the picture of a `mirage run --plot FILE`, for every method: floor plan (if any),
 anchors and the simulated channel's VAs with the method's map of each agent's central run
-(3-sigma ellipses), true and estimated tracks with error ellipses (x20), the error CDFs, and for a
+(3-sigma ellipses), true and estimated tracks with error ellipses (magnified to be seen), the error CDFs, and for a
 grid the mean error per step of every variant. Reads FILE.json written by the CLI.
 Usage: plot_run.py DATA.json OUT.png"""
 import json
@@ -28,6 +28,18 @@ def draw_room(ax, data):
         ax.annotate(name, (x, y), textcoords="offset points", xytext=(5, 5), fontsize=9)
 
 
+def ellipse_scale(data, extent_m):
+    """The magnification of the error ellipses: the largest of 1, 2, 5, 10, 20, 50 at which the
+    median ellipse's semi-major axis stays below 3 % of the view (20 for centimetre errors in a
+    room of metres, 2 for decimetre errors in a hall)."""
+    axes_m = [np.sqrt(max(np.linalg.eigvalsh(np.array([[sxx, sxy], [sxy, syy]])).max(), 0.0))
+              for traj in data["trajectories"] for _x, _y, sxx, sxy, syy in traj["ellipses"]]
+    if not axes_m or np.median(axes_m) <= 0.0:
+        return 20
+    fitting = [k for k in (1, 2, 5, 10, 20, 50) if k * np.median(axes_m) <= 0.03 * extent_m]
+    return fitting[-1] if fitting else 1
+
+
 def main(data_path, out_path):
     with open(data_path, encoding="utf-8") as f:
         data = json.load(f)
@@ -35,6 +47,18 @@ def main(data_path, out_path):
 
     ax = axes[0]
     draw_room(ax, data)
+    # The room, not a diverged run, sets the view; without a floor plan the anchors and truth do.
+    if data["walls"]:
+        walls = np.array([w[:4] for w in data["walls"]])
+        xs, ys = np.concatenate([walls[:, 0], walls[:, 2]]), np.concatenate([walls[:, 1], walls[:, 3]])
+    else:
+        points = [[a[0], a[1]] for a in data["anchors"]]
+        for traj in data["trajectories"]:
+            points += traj["truth"]
+        points = np.array(points)
+        xs, ys = points[:, 0], points[:, 1]
+    margin = 0.05 * max(np.ptp(xs), np.ptp(ys))
+    scale = ellipse_scale(data, max(np.ptp(xs), np.ptp(ys)))
     for t, traj in enumerate(data["trajectories"]):
         color = COLORS[t % len(COLORS)]
         for run in traj["runs"]:
@@ -49,27 +73,16 @@ def main(data_path, out_path):
             vals, vecs = np.linalg.eigh(np.array([[sxx, sxy], [sxy, syy]]))
             vals = np.maximum(vals, 0.0)
             angle = np.degrees(np.arctan2(vecs[1, 1], vecs[0, 1]))
-            ax.add_patch(Ellipse((x, y), 2 * 20 * np.sqrt(vals[1]), 2 * 20 * np.sqrt(vals[0]), angle=angle,
+            ax.add_patch(Ellipse((x, y), 2 * scale * np.sqrt(vals[1]), 2 * scale * np.sqrt(vals[0]), angle=angle,
                                  fill=False, color=color, lw=0.8))
         ax.plot([], [], color=color, label=f"{traj['name']} (estimates, all runs)")
     ax.plot([], [], "k--", label="truth (central run)")
-    # The room, not a diverged run, sets the view; without a floor plan the anchors and truth do.
-    if data["walls"]:
-        walls = np.array([w[:4] for w in data["walls"]])
-        xs, ys = np.concatenate([walls[:, 0], walls[:, 2]]), np.concatenate([walls[:, 1], walls[:, 3]])
-    else:
-        points = [[a[0], a[1]] for a in data["anchors"]]
-        for traj in data["trajectories"]:
-            points += traj["truth"]
-        points = np.array(points)
-        xs, ys = points[:, 0], points[:, 1]
-    margin = 0.05 * max(np.ptp(xs), np.ptp(ys))
     ax.set_xlim(xs.min() - margin, xs.max() + margin)
     ax.set_ylim(ys.min() - margin, ys.max() + margin)
     ax.set_aspect("equal")
     ax.set_xlabel("x (m)")
     ax.set_ylabel("y (m)")
-    ax.set_title(f"{data['title']}: tracks, 1-sigma ellipses x20 every 20th step")
+    ax.set_title(f"{data['title']}: tracks, 1-sigma ellipses x{scale} every 20th step")
     ax.legend(loc="upper right", fontsize=7)
 
     ax = axes[1]
@@ -113,8 +126,14 @@ def main(data_path, out_path):
             ax.plot([], [], "x", color=color, label=f"{traj['name']}: discovered VAs (x), prior VAs (+), 3-sigma")
     ax.set_aspect("equal")
     ax.set_xlabel("x (m)")
-    ax.set_title("floor plan, true VAs and the SLAM map (central run)" if has_map else "floor plan and virtual anchors")
-    ax.legend(loc="upper right", fontsize=7)
+    if has_map:
+        ax.set_title("floor plan, true VAs and the SLAM map (central run)")
+    elif data["walls"] or len(vas):
+        ax.set_title("floor plan and virtual anchors")
+    else:
+        ax.set_title("anchors (no floor plan)")
+    if ax.get_legend_handles_labels()[1]:
+        ax.legend(loc="upper right", fontsize=7)
 
     draw_cdf(axes[2], data)
     finish(fig, data, out_path)
