@@ -37,12 +37,11 @@ for file in "${files[@]}"; do
     problem="exit status $status: $(head -c 500 "$out/$name.stderr")"
   elif ! grep -q '"position_error_m"' "$out/$name.json" 2>/dev/null; then
     problem="$out/$name.json has no position_error_m"
-  elif grep -q '"method": "coop"' "$out/$name.json" &&
+  elif [[ ! -s $out/${name}_csv/tracks.csv || ! -s $out/${name}_csv/runs.csv ]]; then
+    problem="the CSV files (tracks.csv, runs.csv) are missing in $out/${name}_csv"
+  elif grep -q '^grid:' "$file" &&
     [[ ! -s $out/${name}_csv/variants.csv || ! -s $out/${name}_csv/error_by_step.csv ]]; then
-    problem="the CSV files (variants.csv, error_by_step.csv) are missing in $out/${name}_csv"
-  elif ! grep -q '"method": "coop"' "$out/$name.json" &&
-    [[ ! -s $out/${name}_csv/tracks.csv || ! -s $out/${name}_csv/runs.csv ]]; then
-    problem="the CSV files are missing in $out/${name}_csv"
+    problem="a grid's CSV files (variants.csv, error_by_step.csv) are missing in $out/${name}_csv"
   elif [[ ! -s $out/$name.png ]]; then
     problem="$out/$name.png is missing or empty"
   fi
