@@ -11,9 +11,9 @@
 
 #include <fmt/format.h>
 
-#include "mirage/channel/specular_path.h"
 #include "mirage/core/units.h"
 #include "mirage/eval/position_error_bound.h"
+#include "mirage/geometry/visibility.h"
 #include "mirage/pipeline/anchor_channel_source.h"
 #include "mirage/pipeline/given_plan.h"
 #include "mirage/pipeline/link_source.h"
@@ -204,10 +204,9 @@ RunRecord RunOne(const VariantContext& vc, int variant, int group, int run, cons
     if (e.recording && step->truth_m.front() && vc.channel_vas.size() > 0) {
       // Recorded data with truth: the true VAs are those of the plan visible from the truth.
       for (std::size_t a = 0; a < e.anchors.size(); ++a) {
-        for (const auto& path : channel::ComputeSpecularPaths(vc.channel_vas, static_cast<int>(a), e.plan,
-                                                              step->truth_m.front()->head<2>(),
-                                                              e.channel.pulse.carrier_hz, e.channel.medium)) {
-          visible_channel_ids.insert(path.va_id);
+        for (const int id : geometry::VisibleVirtualAnchors(vc.channel_vas, static_cast<int>(a), e.plan,
+                                                            step->truth_m.front()->head<2>())) {
+          visible_channel_ids.insert(id);
         }
       }
     }
@@ -345,7 +344,6 @@ ExperimentResult RunExperiment(std::span<const Variant> variants, const Progress
       if (!e.recording) jobs.push_back({static_cast<int>(v), g, -1});
       for (int r = 0; r < (e.recording ? 1 : e.runs); ++r) jobs.push_back({static_cast<int>(v), g, r});
     }
-    result.simulated = result.simulated && !e.recording;
   }
 
   // The bounds first (each on run 0's truth), then the runs, which read them.
@@ -409,11 +407,6 @@ ExperimentResult RunExperiment(std::span<const Variant> variants, const Progress
                                                           j.run, bound == bounds.end() ? nullptr : &bound->second);
       },
       counted);
-  for (const auto& run : result.runs) {
-    for (const auto& agent : run.agents) {
-      for (const auto& s : agent.steps) result.has_truth = result.has_truth && s.truth_m.has_value();
-    }
-  }
   result.wall_s = Seconds(Clock::now() - t_start);
   return result;
 }

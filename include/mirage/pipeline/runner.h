@@ -39,8 +39,6 @@ struct VariantResult {
 struct ExperimentResult {
   std::vector<VariantResult> variants;
   std::vector<RunRecord> runs;  ///< ordered by variant, then group, then run
-  bool simulated = true;        ///< false for recorded data
-  bool has_truth = true;        ///< every run had a truth
   double wall_s = 0.0;          ///< wall-clock time of everything (s)
 };
 

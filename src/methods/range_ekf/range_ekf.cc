@@ -8,6 +8,7 @@
 
 #include <Eigen/Cholesky>
 
+#include "mirage/core/derived_defaults.h"
 #include "mirage/estimation/ekf_update.h"
 #include "mirage/estimation/gates/chi2.h"
 #include "mirage/estimation/gates/chi2_gate.h"
@@ -40,10 +41,7 @@ const core::OptionsDescriptor<RangeEkfOptions>& RangeEkfOptionsDescriptor() {
                                  .range = ValueRange::Above(0.0),
                                  .doc = "Range standard deviation. 0.1 m, typical of UWB two-way ranging; derived "
                                         "from the scenario's range noise.",
-                                 .derived = core::DerivedDefault{
-                                     .formula = "range_sigma_m",
-                                     .needs = {core::PhysicalKey::kRangeSigma},
-                                     .compute = [](const core::PhysicalKeys& k) { return *k.range_sigma_m; }}});
+                                 .derived = core::RangeSigmas(1.0)});
     d.Number(&O::gate_chi2, {.key = "gate_chi2",
                              .range = ValueRange::AtLeast(0.0),
                              .doc = "Chi-square gate on one range's innovation (1 degree of freedom); 0 = off. 9 = 3 "
@@ -59,10 +57,7 @@ const core::OptionsDescriptor<RangeEkfOptions>& RangeEkfOptionsDescriptor() {
                                               .range = ValueRange::Above(0.0),
                                               .doc = "Velocity standard deviation at the start, at rest. 1 m/s; "
                                                      "derived: the walker's speed in an unknown direction.",
-                                              .derived = core::DerivedDefault{
-                                                  .formula = "speed_mps",
-                                                  .needs = {core::PhysicalKey::kSpeed},
-                                                  .compute = [](const core::PhysicalKeys& k) { return *k.speed_mps; }}});
+                                              .derived = core::SpeedTimes(1.0)});
     d.Section(&O::motion, {.key = "motion", .doc = "Constant-velocity motion model of the agent."},
               estimation::ConstantVelocityOptionsDescriptor());
     return d;
@@ -132,16 +127,16 @@ bool RangeEkf::Reacquire(std::span<const core::RangeSet> sets, int explained_by_
   // (its true one missed) is gated out by a track that is fine, and a fix that explains no more
   // anchors than the track is no evidence against it.
   if (robust->anchors_used <= explained_by_track) return false;
-  const estimation::PositionFix* fix = &robust->fix;
+  const estimation::PositionFix& fix = robust->fix;
   const int d = planar() ? 2 : 3;
   // The track is lost when the prediction lies outside the fix's confidence region, combined
   // with its own, at the gate's tail probability carried to the position's dimension.
   const estimation::BlockKey position(PositionType(planar()), 0);
-  const Eigen::VectorXd difference_m = state_.Mean(position) - fix->position_m.head(d);
-  const Eigen::MatrixXd combined_m2 = state_.Covariance(position) + fix->covariance_m2.topLeftCorner(d, d);
+  const Eigen::VectorXd difference_m = state_.Mean(position) - fix.position_m.head(d);
+  const Eigen::MatrixXd combined_m2 = state_.Covariance(position) + fix.covariance_m2.topLeftCorner(d, d);
   const double distance2 = difference_m.dot(combined_m2.ldlt().solve(difference_m));
   if (!(distance2 > estimation::Chi2ThresholdLike1Dof(options_.gate_chi2, d))) return false;
-  Start(sets.front().t_s, fix->position_m, fix->covariance_m2);
+  Start(sets.front().t_s, fix.position_m, fix.covariance_m2);
   return true;
 }
 

@@ -418,7 +418,6 @@ bool VaDiscovery::AddCandidate(int step, double t_s, int anchor_index, const std
                                std::vector<DiscoverySample> samples, std::span<const Vec2> known_vas_m) {
   Candidate candidate;
   candidate.anchor_index = anchor_index;
-  candidate.created_step = step;
   candidate.last_support_step = step;
   candidate.created_t_s = t_s;
   candidate.last_support_t_s = t_s;

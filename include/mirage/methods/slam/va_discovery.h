@@ -170,9 +170,8 @@ struct Hypothesis {
 struct Candidate {
   int anchor_index = 0;
   std::array<Hypothesis, 2> hypotheses;
-  int created_step = 0;
   int last_support_step = 0;
-  double created_t_s = 0.0;       ///< time of created_step (s)
+  double created_t_s = 0.0;       ///< time the candidate was created (s)
   double last_support_t_s = 0.0;  ///< time of last_support_step (s)
   std::vector<DiscoverySample> samples;  ///< the group's (or sweep's) ranges and every range since
 };
