@@ -24,7 +24,10 @@
 
 #include "mirage/channel/cir_synthesizer.h"
 #include "mirage/channel/range_level_simulator.h"
+#include "mirage/channel/acoustic_stamps.h"
+#include "mirage/channel/imu_simulator.h"
 #include "mirage/channel/ranging_simulator.h"
+#include "mirage/estimation/imu/pdr.h"
 #include "mirage/dsp/mpc_extractor.h"
 #include "mirage/eval/error_stats.h"
 #include "mirage/io/input_error.h"
@@ -186,6 +189,13 @@ std::vector<DescribedSection> DescribedSections() {
        mirage::channel::RangingOptionsDescriptor()},
       {"ranges", "measurements", "range-level measurements with SINR-dependent noise (measurements.model ranges)",
        mirage::channel::RangeLevelOptionsDescriptor()},
+      {"acoustic_stamps", "measurements", "arrival-time stamps of a sound sender at microphones (measurements.model acoustic)",
+       mirage::channel::AcousticStampOptionsDescriptor()},
+      {"imu", "measurements.imu", "a smartphone IMU's samples (measurements.imu model imu)",
+       mirage::channel::ImuOptionsDescriptor()},
+      {"constant_heading_error", "measurements.imu",
+       "the thesis's synthetic IMU: displacements rotated by a constant angle (measurements.imu model constant_heading_error)",
+       mirage::estimation::ConstantHeadingErrorOptionsDescriptor()},
       {"mpc", "mpc", "multipath-component extraction from CIRs", mirage::dsp::MpcExtractorOptionsDescriptor()},
       {"divergence", "evaluation.divergence", "the rule that calls a run diverged", mirage::eval::DivergenceRuleDescriptor()},
   };
@@ -236,9 +246,13 @@ int Simulate(const SimulateArgs& args) {
   if (config.measurement_model == mirage::pipeline::MeasurementModel::kRecorded) {
     throw mirage::io::InputError(args.scenario + ": measurements.model is recorded; there is nothing to simulate");
   }
-  if (config.method.input != mirage::methods::MethodInput::kRangeSets) {
+  if (config.method.input == mirage::methods::MethodInput::kLinkCirs) {
     throw mirage::io::InputError(args.scenario + ": method " + config.method.name +
                                  " consumes CIRs, which have no recorded-data form; use mirage run");
+  }
+  if (config.method.input == mirage::methods::MethodInput::kToaStamps) {
+    throw mirage::io::InputError(args.scenario + ": method " + config.method.name +
+                                 " consumes arrival-time stamps, whose recorded form (toa.csv) is not written yet; use mirage run");
   }
   int trajectory = 0;
   if (!args.trajectory.empty()) {

@@ -38,6 +38,9 @@ json GroupJson(const GroupSummary& g, const std::string& bound) {
   // Recorded data without truth: no error block (null), as the divergence is unknown too.
   j["position_error_m"] = g.has_truth ? ErrorJson(g.error) : json(nullptr);
   j["diverged_runs"] = g.has_truth ? json(g.diverged_runs) : json(nullptr);
+  j["failure_rate_1m"] = g.has_truth ? json(g.failure_rate_1m) : json(nullptr);
+  j["failure_rate_2m"] = g.has_truth ? json(g.failure_rate_2m) : json(nullptr);
+  j["no_fix_steps"] = g.no_fix_steps;
   j["final_error_m"] = g.has_truth ? json{{"mean", g.final_error_mean_m}, {"p90", g.final_error_p90_m}} : json(nullptr);
   if (g.bound_mean_m) {
     j["peb_m"] = {{"mean", *g.bound_mean_m}, {"p50", *g.bound_p50_m}, {"rms", *g.bound_rms_m}, {"kind", bound},

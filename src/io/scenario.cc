@@ -2,6 +2,7 @@
 #include "mirage/io/scenario.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <map>
 #include <memory>
@@ -9,11 +10,13 @@
 
 #include <fmt/format.h>
 
+#include "mirage/channel/acoustic_stamps.h"
 #include "mirage/channel/cir_synthesizer.h"
 #include "mirage/channel/range_level_simulator.h"
 #include "mirage/channel/ranging_simulator.h"
 #include "mirage/dsp/mpc_extractor.h"
 #include "mirage/eval/error_stats.h"
+#include "mirage/geometry/reflector_3d.h"
 #include "mirage/geometry/segment.h"
 #include "mirage/geometry/trajectory.h"
 #include "mirage/io/options_json.h"
@@ -103,10 +106,14 @@ void CheckWindowCoversLos(YamlMap& m, const Experiment& e) {
 
 void ReadMedium(YamlMap m, Experiment& e) {
   const std::string kind = m.String("kind", std::string("radio"));
-  if (kind != "radio") {
-    m.Fail("kind", "unknown medium '" + kind + "' (available: radio; sound comes with the acoustic methods)");
+  if (kind == "radio") {
+    e.medium = core::Medium::Radio();
+  } else if (kind == "sound") {
+    // The temperature the estimator assumes (C); 20 C gives 343.2 m/s (Bordoy 2020 Eq. 3.31).
+    e.medium = core::Medium::Sound(m.NumberInRange("temperature_c", 20.0, -50.0, 60.0, "C"));
+  } else {
+    m.Fail("kind", "unknown medium '" + kind + "' (available: radio, sound)");
   }
-  e.medium = core::Medium::Radio();
   m.RejectUnknownKeys();
 }
 
@@ -135,6 +142,11 @@ void ReadTrajectories(YamlMap& root, bool recorded, Experiment& e) {
     if (!(spec.dt_s > 0.0)) t.Fail("dt_s", FormatValue(spec.dt_s) + " s must be > 0 s (time steps go forward)");
     spec.height_m = t.NumberInRange("height_m", spec.height_m, -kHuge, kHuge, "m");
     spec.turn_radius_m = t.NumberInRange("turn_radius_m", spec.turn_radius_m, 0.0, 100.0, "m");
+    spec.height_amplitude_m = t.NumberInRange("height_amplitude_m", spec.height_amplitude_m, 0.0, 100.0, "m");
+    if (t.Has("height_period_s")) {
+      spec.height_period_s = t.Number("height_period_s", spec.height_period_s);
+      if (!(spec.height_period_s > 0.0)) t.Fail("height_period_s", FormatValue(spec.height_period_s) + " s must be > 0 s");
+    }
     if (!IsPlainName(spec.name)) t.Fail("name", "must not contain commas, quotes or line breaks (it goes into CSV files)");
     for (const auto& other : e.trajectories) {
       if (other.name == spec.name) t.Fail("name", "duplicate trajectory name '" + spec.name + "' (names label the CSV rows)");
@@ -198,6 +210,78 @@ void ReadChannel(YamlMap m, Experiment& e, const core::PhysicalKeys& keys) {
   Check(e.channel, m);
 }
 
+// The acoustic model's hall: the floor plan's walls, floor and ceiling, then partitions and tables
+// (3-D reflectors), and the virtual-sender episodes that name them.
+void ReadAcoustic(YamlMap& m, Experiment& e, const core::PhysicalKeys& keys) {
+  if (e.medium.kind != core::MediumKind::kSound) m.Fail("model", "the acoustic model needs medium: {kind: sound}");
+  if (e.plan.walls().empty() || !std::isfinite(e.plan.ceiling_z_m())) {
+    m.Fail("model", "the acoustic model needs a floor_plan with walls and ceiling_z_m (the hall's reflectors)");
+  }
+  e.reflectors = geometry::ReflectorsFromPlan(e.plan);
+  const auto check_name = [&](YamlMap& r, const std::string& name) {
+    for (const auto& other : e.reflectors) {
+      if (other.name == name) r.Fail("name", "duplicate reflector name '" + name + "'");
+    }
+  };
+  for (auto& p : m.Has("partitions") ? m.MapList("partitions", true) : std::vector<YamlMap>()) {
+    const std::string name = p.String("name");
+    check_name(p, name);
+    const auto ends = p.Points("ends_m", 2);
+    if (ends.size() != 2 || (ends[0] - ends[1]).norm() <= 0.0) p.Fail("ends_m", "give two different points [[x, y], [x, y]]");
+    const double z0 = p.NumberInRange("z_min_m", e.plan.floor_z_m(), e.plan.floor_z_m(), e.plan.ceiling_z_m(), "m");
+    const double z1 = p.NumberInRange("z_max_m", 2.0, z0, e.plan.ceiling_z_m(), "m");
+    if (!(z1 > z0)) p.Fail("z_max_m", "must be above z_min_m");
+    const double coeff = p.NumberInRange("reflection_coeff", 0.9, 0.0, 1.0, "");
+    p.RejectUnknownKeys();
+    e.reflectors.push_back(geometry::VerticalReflector(name, ends[0], ends[1], z0, z1, coeff));
+  }
+  for (auto& t : m.Has("tables") ? m.MapList("tables", true) : std::vector<YamlMap>()) {
+    const std::string name = t.String("name");
+    check_name(t, name);
+    const auto corners = t.Points("corners_m", 2);
+    if (corners.size() != 2) t.Fail("corners_m", "give two opposite corners [[x, y], [x, y]]");
+    const Vec2 lo = corners[0].cwiseMin(corners[1]), hi = corners[0].cwiseMax(corners[1]);
+    if (!((hi - lo).minCoeff() > 0.0)) t.Fail("corners_m", "the table has no area");
+    const double z = t.NumberInRange("z_m", 0.75, e.plan.floor_z_m(), e.plan.ceiling_z_m(), "m");
+    const double coeff = t.NumberInRange("reflection_coeff", 0.9, 0.0, 1.0, "");
+    t.RejectUnknownKeys();
+    e.reflectors.push_back(geometry::HorizontalReflector(name, 0.5 * (lo + hi), 0.5 * (hi - lo).x(), 0.5 * (hi - lo).y(), z, coeff));
+  }
+  for (auto& f : m.Has("facing") ? m.MapList("facing", true) : std::vector<YamlMap>()) {
+    channel::FacingEpisode episode;
+    episode.t_start_s = f.NumberInRange("t_start_s", 0.0, 0.0, kHuge, "s");
+    episode.t_end_s = f.NumberInRange("t_end_s", 0.0, episode.t_start_s, kHuge, "s");
+    if (!(episode.t_end_s > episode.t_start_s)) f.Fail("t_end_s", "must be after t_start_s");
+    episode.reflector = f.String("reflector");
+    if (std::none_of(e.reflectors.begin(), e.reflectors.end(), [&](const auto& r) { return r.name == episode.reflector; })) {
+      std::string names;
+      for (const auto& r : e.reflectors) names += (names.empty() ? "" : ", ") + r.name;
+      f.Fail("reflector", "no reflector named '" + episode.reflector + "' (available: " + names + ")");
+    }
+    f.RejectUnknownKeys();
+    e.acoustic.facing.push_back(episode);
+  }
+  if (m.Has("imu")) {
+    YamlMap imu = m.Map("imu");
+    const std::string model = imu.String("model");
+    if (model == "imu") {
+      e.inertial = pipeline::InertialModel::kImu;
+      ReadOptions(imu, channel::ImuOptionsDescriptor(), keys, e.imu);
+    } else if (model == "constant_heading_error") {
+      e.inertial = pipeline::InertialModel::kConstantHeadingError;
+      ReadOptions(imu, estimation::ConstantHeadingErrorOptionsDescriptor(), keys, e.heading_error);
+    } else {
+      imu.Fail("model", "unknown inertial model '" + model + "' (available: imu, constant_heading_error)");
+    }
+  }
+  ReadOptions(m, channel::AcousticStampOptionsDescriptor(), keys, e.acoustic);
+  for (const auto& t : e.trajectories) {
+    if (t.height_m - t.height_amplitude_m <= e.plan.floor_z_m() || t.height_m + t.height_amplitude_m >= e.plan.ceiling_z_m()) {
+      m.Fail("model", "trajectory '" + t.name + "' leaves the space between floor and ceiling (height_m +- height_amplitude_m)");
+    }
+  }
+}
+
 // `measurements`: the model and its keys.
 void ReadMeasurements(YamlMap m, Experiment& e, std::optional<RecordingFiles>& files, const core::PhysicalKeys& keys) {
   const std::string model = m.String("model", std::string("cir"));
@@ -210,6 +294,9 @@ void ReadMeasurements(YamlMap m, Experiment& e, std::optional<RecordingFiles>& f
   } else if (model == "ranging") {
     e.measurement_model = MeasurementModel::kRanging;
     ReadOptions(m, channel::RangingOptionsDescriptor(), keys, e.ranging);
+  } else if (model == "acoustic") {
+    e.measurement_model = MeasurementModel::kAcoustic;
+    ReadAcoustic(m, e, keys);
   } else if (model == "recorded") {
     e.measurement_model = MeasurementModel::kRecorded;
     RecordingFiles f;
@@ -223,7 +310,7 @@ void ReadMeasurements(YamlMap m, Experiment& e, std::optional<RecordingFiles>& f
     m.RejectUnknownKeys();
     files = f;
   } else {
-    m.Fail("model", "unknown measurement model '" + model + "' (available: cir, ranges, ranging, recorded)");
+    m.Fail("model", "unknown measurement model '" + model + "' (available: cir, ranges, ranging, acoustic, recorded)");
   }
 }
 
@@ -322,6 +409,14 @@ Experiment ReadExperiment(YamlMap& root, const std::string& file, const methods:
                                      "' needs its start position [x, y] (m); it cannot start itself");
   }
   if (files) LoadRecordedData(file, *files, e);
+  if (e.measurement_model != MeasurementModel::kAcoustic) {
+    for (auto& t : recorded ? std::vector<YamlMap>() : root.MapList("trajectories", false)) {
+      if (t.Has("height_amplitude_m") || t.Has("height_period_s")) {
+        t.Fail(t.Has("height_amplitude_m") ? "height_amplitude_m" : "height_period_s",
+               "hand motion is simulated by measurements.model acoustic only");
+      }
+    }
+  }
   const core::PhysicalKeys keys = pipeline::PhysicalKeysOf(e);
   ReadChannel(root.OptionalMap("channel"), e, keys);
   ReadOptions(root.OptionalMap("mpc"), dsp::MpcExtractorOptionsDescriptor(), keys, e.mpc);
@@ -359,6 +454,13 @@ Experiment ReadExperiment(YamlMap& root, const std::string& file, const methods:
   // Checks that need the world: a method that estimates with the anchors must be given some.
   if (info->input == methods::MethodInput::kRangeSets && e.anchors.empty()) {
     root.Fail("anchors", "method '" + info->name + "' needs at least one anchor");
+  }
+  if (info->input == methods::MethodInput::kToaStamps && e.measurement_model != MeasurementModel::kAcoustic) {
+    root.Fail("measurements", "method '" + info->name + "' consumes arrival-time stamps: measurements.model must be acoustic");
+  }
+  if (info->input != methods::MethodInput::kToaStamps && e.measurement_model == MeasurementModel::kAcoustic) {
+    root.Fail("measurements", "measurements.model acoustic gives arrival-time stamps, which method '" + info->name +
+                                  "' does not consume (use an acoustic method)");
   }
   if (info->input == methods::MethodInput::kLinkCirs && e.measurement_model != MeasurementModel::kCir) {
     root.Fail("measurements", "method '" + info->name + "' consumes CIRs: measurements.model must be cir");

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "mirage/methods/registry.h"
 
+#include "mirage/methods/acoustic/acoustic_estimator.h"
 #include "mirage/methods/coop/coop_estimator.h"
 #include "mirage/methods/mint/mint_estimator.h"
 #include "mirage/methods/range_ekf/range_ekf.h"
@@ -64,6 +65,14 @@ std::vector<MethodInfo> BuiltIn() {
         "textbook EKF with a constant-velocity model", range_ekf::RangeEkfOptionsDescriptor());
     m.start_sigma_m = [](const void* o) { return static_cast<const range_ekf::RangeEkfOptions*>(o)->initial_position_sigma_m; };
     m.self_initializes = true;
+    out.push_back(std::move(m));
+  }
+  {
+    auto m = Entry<acoustic::AcousticOptions, acoustic::AcousticEstimator>(
+        "acoustic", "a sound sender among ceiling microphones: robust EKF (Hampel), EKF or NLLS on arrival-time stamps",
+        "Bordoy 2020 ch. 5", acoustic::AcousticOptionsDescriptor());
+    m.input = MethodInput::kToaStamps;
+    m.start_sigma_m = [](const void* o) { return static_cast<const acoustic::AcousticOptions*>(o)->initial_position_sigma_m; };
     out.push_back(std::move(m));
   }
   return out;

@@ -59,6 +59,12 @@ core::PhysicalKeys PhysicalKeysOf(const Experiment& e) {
       keys.detection_probability = e.ranging.detection_probability;
       keys.clutter_rate = e.ranging.clutter_rate;
       break;
+    case MeasurementModel::kAcoustic:
+      // A stamp's noise as a range at the speed the estimator assumes.
+      keys.range_sigma_m = e.medium.speed_mps * e.acoustic.stamp_sigma_s;
+      keys.detection_probability = e.acoustic.detection_probability;
+      keys.clutter_rate = e.acoustic.false_alarm_rate;
+      break;
     case MeasurementModel::kRangeLevel:
       keys.detection_probability = e.range_level.detection_probability;
       keys.clutter_rate = e.range_level.clutter_rate;

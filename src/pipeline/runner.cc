@@ -14,6 +14,7 @@
 #include "mirage/core/units.h"
 #include "mirage/eval/position_error_bound.h"
 #include "mirage/geometry/visibility.h"
+#include "mirage/pipeline/acoustic_source.h"
 #include "mirage/pipeline/anchor_channel_source.h"
 #include "mirage/pipeline/given_plan.h"
 #include "mirage/pipeline/link_source.h"
@@ -129,6 +130,8 @@ RunRecord RunOne(const VariantContext& vc, int variant, int group, int run, cons
     source = std::make_unique<RecordedSource>(*e.recording, e.epoch_window_s);
   } else if (vc.joint) {
     source = std::make_unique<LinkSource>(*vc.links, run);
+  } else if (e.measurement_model == MeasurementModel::kAcoustic) {
+    source = std::make_unique<AcousticSource>(e, group, run);
   } else {
     auto s = std::make_unique<AnchorChannelSource>(*vc.anchors, group, run);
     anchor_source = s.get();
@@ -235,6 +238,7 @@ RunRecord RunOne(const VariantContext& vc, int variant, int group, int run, cons
       s.associations = out.associations;
       s.expected = out.expected;
       s.relocalized = out.relocalized;
+      s.fixed = out.fixed;
       record.agents[a].steps.push_back(s);
     }
     if (frame && given.biased >= 0) {
@@ -372,6 +376,15 @@ ExperimentResult RunExperiment(std::span<const Variant> variants, const Progress
             std::vector<Vec3> at;
             for (const auto& agent : jt.positions_m) at.push_back(agent[n]);
             truth.positions_m.push_back(at);
+          }
+        } else if (e.measurement_model == MeasurementModel::kAcoustic) {
+          // Run 0's trajectory, hand motion included: one entry per emission.
+          const AcousticSource source(e, j.group, 0);
+          truth.t_s.push_back(source.start_s());
+          truth.positions_m.push_back(*source.TrueStart());
+          for (std::size_t k = 0; k < source.samples().size(); ++k) {
+            truth.t_s.push_back(source.samples()[k].t_s);
+            truth.positions_m.push_back({source.TruthAt(k)});
           }
         } else {
           // Run 0's trajectory: the start, then every epoch (the first at the start's time).

@@ -67,6 +67,7 @@ GroupSummary SummarizeRuns(const std::string& name, std::span<const RunRecord* c
   g.runs = static_cast<int>(runs.size());
   std::vector<double> errors, bounds, finals, relative, bias_finals, tracked_errors, tracked_bounds;
   double associations = 0.0, expected = 0.0, wall_rms = 0.0;
+  int failures_1m = 0, failures_2m = 0;
   int epochs = 0, wall_runs = 0;
   std::size_t longest = 0;
   for (const RunRecord* run : runs) {
@@ -91,7 +92,10 @@ GroupSummary SummarizeRuns(const std::string& name, std::span<const RunRecord* c
       for (std::size_t k = 0; k < agent.steps.size(); ++k) {
         const TrackStep& s = agent.steps[k];
         if (!s.truth_m) g.has_truth = false;
+        if (!s.fixed) ++g.no_fix_steps;
         if (s.error_m) {
+          failures_1m += (!s.fixed || *s.error_m > 1.0) ? 1 : 0;
+          failures_2m += (!s.fixed || *s.error_m > 2.0) ? 1 : 0;
           errors.push_back(*s.error_m);
           error_sum[k] += *s.error_m;
           ++error_count[k];
@@ -124,6 +128,10 @@ GroupSummary SummarizeRuns(const std::string& name, std::span<const RunRecord* c
     }
   }
   g.error = eval::ComputeErrorStats(errors);
+  if (!errors.empty()) {
+    g.failure_rate_1m = static_cast<double>(failures_1m) / static_cast<double>(errors.size());
+    g.failure_rate_2m = static_cast<double>(failures_2m) / static_cast<double>(errors.size());
+  }
   if (!finals.empty()) {
     g.final_error_mean_m = Mean(finals);
     g.final_error_p90_m = eval::Percentile(finals, 90.0);

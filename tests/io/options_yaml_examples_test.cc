@@ -21,6 +21,7 @@
 #include "mirage/io/scenario.h"
 #include "mirage/methods/coop/coop_tracker.h"
 #include "mirage/methods/mint/mint_tracker.h"
+#include "mirage/methods/acoustic/acoustic_options.h"
 #include "mirage/methods/range_ekf/range_ekf.h"
 #include "mirage/methods/slam/slam_tracker.h"
 
@@ -94,6 +95,7 @@ void ExpectMethodOptions(const std::string& file, const Experiment& e) {
   if (e.method.name == "slam") return ExpectMethodOptions(file, e, methods::slam::SlamOptionsDescriptor());
   if (e.method.name == "coop") return ExpectMethodOptions(file, e, methods::coop::CoopOptionsDescriptor());
   if (e.method.name == "range_ekf") return ExpectMethodOptions(file, e, methods::range_ekf::RangeEkfOptionsDescriptor());
+  if (e.method.name == "acoustic") return ExpectMethodOptions(file, e, methods::acoustic::AcousticOptionsDescriptor());
   ADD_FAILURE() << "no options struct known for method '" << e.method.name << "': add it here";
 }
 

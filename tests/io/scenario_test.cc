@@ -934,8 +934,8 @@ TEST_F(ScenarioFiles, NamesACeilingBelowTheFloor) {
 }
 
 TEST_F(ScenarioFiles, NamesAnUnknownMedium) {
-  const std::string path = Write("medium.yaml", TinyWithLine(1, "name: tiny\nmedium: {kind: sound}"));
-  ExpectError(ErrorOf(path), path, 2, {"medium.kind", "unknown medium 'sound'", "radio"});
+  const std::string path = Write("medium.yaml", TinyWithLine(1, "name: tiny\nmedium: {kind: water}"));
+  ExpectError(ErrorOf(path), path, 2, {"medium.kind", "unknown medium 'water'", "radio, sound"});
 }
 
 TEST_F(ScenarioFiles, NamesANanValue) {

@@ -20,10 +20,11 @@ struct Epoch {
   std::vector<ToaStamps> toas;
   std::vector<TwrExchange> twrs;
   std::vector<ImuSample> imus;
+  std::vector<PositionIncrement> increments;
 
   /// Number of records of all kinds.
   [[nodiscard]] std::size_t size() const {
-    return range_sets.size() + cirs.size() + toas.size() + twrs.size() + imus.size();
+    return range_sets.size() + cirs.size() + toas.size() + twrs.size() + imus.size() + increments.size();
   }
   [[nodiscard]] bool empty() const { return size() == 0; }
 };

@@ -50,6 +50,7 @@ class EpochAssembler {
   static std::vector<ToaStamps>& Slot(Epoch& e, const ToaStamps&) { return e.toas; }
   static std::vector<TwrExchange>& Slot(Epoch& e, const TwrExchange&) { return e.twrs; }
   static std::vector<ImuSample>& Slot(Epoch& e, const ImuSample&) { return e.imus; }
+  static std::vector<PositionIncrement>& Slot(Epoch& e, const PositionIncrement&) { return e.increments; }
 
   // Keeps each kind in time order (records inside one window may arrive shuffled); equal times
   // keep their arrival order.

@@ -89,6 +89,18 @@ struct ImuSample {
   Vec3 gyro_radps = Vec3::Zero();  ///< angular rate (rad/s)
 };
 
+/// A horizontal displacement of an agent from its own dead reckoning between two times (a phone's
+/// pedestrian dead reckoning, wheel odometry), in the world frame, with its covariance: the
+/// loosely coupled inertial input of Bordoy 2020 Eq. 5.35-5.39.
+struct PositionIncrement {
+  double t_s = 0.0;       ///< end of the interval (s)
+  std::string sensor_id;
+  int sensor_index = 0;
+  double t_from_s = 0.0;  ///< start of the interval (s)
+  Vec2 delta_m = Vec2::Zero();
+  Eigen::Matrix2d covariance_m2 = Eigen::Matrix2d::Zero();
+};
+
 /// True if one of `ranges` lies within tolerance_m (exclusive) of expected_m: the match test of
 /// the relocalization scores (MINT's grid search, SLAM's track-loss recovery).
 inline bool HasRangeNear(std::span<const RangeMeasurement> ranges, double expected_m, double tolerance_m) {

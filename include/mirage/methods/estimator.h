@@ -47,6 +47,9 @@ struct StepOutput {
   bool relocalized = false;           ///< the track was declared lost and restarted
   bool constrained = false;           ///< a constraint (the floor plan, a speed limit) moved the estimate
   bool rejected_update = false;       ///< the update was skipped (S not positive definite)
+  /// False when the method made no estimate at this epoch (a snapshot solver without a fix): the
+  /// agents' estimates repeat the last ones, and the evaluation counts the epoch as a failure.
+  bool fixed = true;
   std::vector<PathSinr> sinr_estimates;
 };
 

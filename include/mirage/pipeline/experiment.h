@@ -12,7 +12,9 @@
 #include <string>
 #include <vector>
 
+#include "mirage/channel/acoustic_stamps.h"
 #include "mirage/channel/cir_synthesizer.h"
+#include "mirage/channel/imu_simulator.h"
 #include "mirage/channel/link.h"
 #include "mirage/channel/range_level_simulator.h"
 #include "mirage/channel/ranging_simulator.h"
@@ -20,8 +22,10 @@
 #include "mirage/core/physical_keys.h"
 #include "mirage/core/types.h"
 #include "mirage/dsp/mpc_extractor.h"
+#include "mirage/estimation/imu/pdr.h"
 #include "mirage/eval/error_stats.h"
 #include "mirage/geometry/floor_plan.h"
+#include "mirage/geometry/reflector_3d.h"
 #include "mirage/methods/estimator.h"
 #include "mirage/methods/registry.h"
 #include "mirage/methods/world.h"
@@ -38,6 +42,11 @@ struct TrajectorySpec {
   double height_m = 0.0;          ///< the agent's height z (m)
   /// Corners turned along arcs of this radius (m), >= 0; 0 turns instantly at the waypoints.
   double turn_radius_m = 0.0;
+  /// Hand motion (acoustic scenarios): the height swings as height_m + amplitude sin(2 pi t /
+  /// period) (Bordoy 2020 Sec. 8.5: the phone moved up and down while walking). Amplitude (m),
+  /// >= 0; period (s), > 0.
+  double height_amplitude_m = 0.0;
+  double height_period_s = 4.0;
 };
 
 /// Start offsets of the Monte-Carlo runs: run i is shifted by grid point i mod (nx * ny), the
@@ -62,7 +71,16 @@ enum class MeasurementModel {
   kCir,         ///< sampled CIRs with diffuse multipath; range sets by MPC extraction
   kRangeLevel,  ///< ranges drawn at each path's CRLB: missed detections, Poisson clutter
   kRanging,     ///< one range per anchor at a fixed noise (a ranging system), 3-D
+  kAcoustic,    ///< arrival-time stamps per microphone and emission of a sound sender (Bordoy 2020), 3-D
   kRecorded,    ///< no simulation: the ranges of a recording (anchors.csv, ranges.csv, truth.csv)
+};
+
+/// The inertial input an acoustic simulation adds to its epochs.
+enum class InertialModel {
+  kNone,
+  kImu,                   ///< raw smartphone IMU samples (channel/imu_simulator.h) at its rate
+  kConstantHeadingError,  ///< the thesis's synthetic IMU (Bordoy 2020 Sec. 5.3): the true
+                          ///< displacement per emission rotated by a constant angle
 };
 
 /// The errors of the floor plan the estimator is given (Kulmer et al. Sec. IV-C2, IV-E). Walls of
@@ -126,6 +144,13 @@ struct Experiment {
   dsp::MpcExtractorOptions mpc;
   channel::RangeLevelOptions range_level;
   channel::RangingOptions ranging;
+  channel::AcousticStampOptions acoustic;
+  InertialModel inertial = InertialModel::kNone;  ///< kAcoustic
+  channel::ImuOptions imu;                        ///< InertialModel::kImu
+  estimation::ConstantHeadingErrorOptions heading_error;  ///< InertialModel::kConstantHeadingError
+  /// kAcoustic: the hall's reflecting surfaces (the floor plan's walls, floor and ceiling, then
+  /// the partitions and tables), in the order stamps' labels index them.
+  std::vector<geometry::Reflector3> reflectors;
   std::shared_ptr<const Recording> recording;  ///< kRecorded
   double epoch_window_s = 0.0;                  ///< recorded data: the epoch rule's window
   /// Recorded data: the range noise and walking speed the recording's owner states (the

@@ -30,6 +30,7 @@ struct TrackStep {
   int associations = 0;  ///< measurements used at this epoch, all agents
   int expected = 0;      ///< measurements the model expected at this epoch, all agents
   bool relocalized = false;
+  bool fixed = true;  ///< the method made an estimate at this epoch (methods::StepOutput::fixed)
 };
 
 /// One tracked agent over a run.

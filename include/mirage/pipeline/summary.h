@@ -67,6 +67,11 @@ struct GroupSummary {
   bool has_truth = true;   ///< false on recorded data without truth: no error statistics
   eval::ErrorStats error;
   int diverged_runs = 0;   ///< runs with an agent diverged
+  /// Fractions of the epochs with truth whose error exceeds 1 m and 2 m, an epoch without a fix
+  /// counted as a failure (Bordoy 2020 Sec. 5.3: the failure rate of Fig. 5.5).
+  double failure_rate_1m = 0.0;
+  double failure_rate_2m = 0.0;
+  int no_fix_steps = 0;  ///< epochs at which the method made no estimate
   double final_error_mean_m = 0.0;  ///< error at the last epoch, mean over agents and runs
   double final_error_p90_m = 0.0;
   std::optional<double> bound_mean_m;  ///< empty when no epoch had a finite bound

@@ -1,0 +1,107 @@
+// SPDX-License-Identifier: MIT
+// The acoustic sender tracker of Bordoy 2020 ch. 5 on the framework: a smartphone emits chirps
+// every I seconds of its own clock; ceiling microphones with one time base stamp every arrival
+// they detect (direct path, echoes, false alarms). Each emission is one epoch.
+//
+// Filters ("rekf", "ekf"). The state is [S, V, b, iota]: the sender's position S and velocity V
+// (planar: x, y at the known height; 3d: x, y, z), the emission time as a distance
+// b = c (t_emit - t_ref) against a reference time t_ref the filter advances by I per interval,
+// and iota = c I epsilon, the distance the emission time gains per interval from the sender's
+// clock rate error epsilon. We work on TOA with the emission time in the state (the and
+// the digest's recommendation), so that R stays diagonal and the Hampel weights can isolate one
+// bad microphone; the TDOA rows of Eq. 5.36 would mix them through R_TD. Prediction: the
+// white-acceleration model of Eq. 5.31-5.34 over n I, n the elapsed intervals (Eq. 3.39, counted
+// from the emission time the stamps imply, so that a missed emission does not shift the count);
+// b gains n iota plus the jitter. Measurement (Eq. 5.1 without the bias): per microphone the
+// stamp nearest the prediction, z = c (T - t_ref) = |S - M_i| + b; the stamps that break the
+// TDOA bound (Eq. 5.5) against most others are left out first. Update: IRLS with Hampel weights
+// over the whitened prior and stamp rows (Eq. 5.25-5.30, estimation/robust/irls_update.h); the
+// plain EKF is the same update with every weight 1.
+//
+// Inertial fusion (options.inertial): the state gains a clone of the last emission's horizontal
+// position, S_prev; a dead-reckoning increment delta over the interval is the row
+// S_xy - S_prev = delta with the increment's covariance, stacked with the stamps (Eq. 5.35-5.39
+// use an IMU position; an increment on a clone needs no common frame origin and drifts only
+// within one interval). Its rows are reweighted like the others.
+//
+// Snapshot ("nlls"): per emission a Levenberg-Marquardt fix of [S, b] from random starts, with
+// each microphone's earliest stamp that passes the TDOA bound, no motion model (the thesis's
+// NLLS comparison "with random initialisation using all measurements").
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "mirage/core/rng.h"
+#include "mirage/estimation/imu/pdr.h"
+#include "mirage/methods/acoustic/acoustic_options.h"
+#include "mirage/methods/estimator.h"
+#include "mirage/methods/world.h"
+
+namespace mirage::methods::acoustic {
+
+/// One microphone's stamp chosen for an update, as a distance z = c (T - t_ref) (m).
+struct ChosenStamp {
+  int receiver = 0;
+  double z_m = 0.0;
+};
+
+/// The stamps of one epoch per receiver, as c (T - t_ref) (m).
+using StampsByReceiver = std::vector<std::vector<double>>;
+
+/// The receivers whose chosen stamps survive the TDOA bound (Eq. 5.5): pairs with
+/// |z_i - z_j| > |M_i - M_j| + margin_m cannot both be direct paths; the stamp in the most such
+/// pairs is removed until none is left (ties: the later stamp, more likely an echo).
+std::vector<ChosenStamp> ApplyTdoaBound(std::vector<ChosenStamp> chosen, std::span<const Anchor> receivers,
+                                        double margin_m);
+
+/// The acoustic estimator of one run.
+class AcousticEstimator final : public Estimator {
+ public:
+  AcousticEstimator(const AcousticOptions& options, const World& world);
+
+  void Initialize(const Prior& prior) override;
+  bool InitializeFromEpoch(const core::Epoch& epoch) override;
+  StepOutput Process(const core::Epoch& epoch) override;
+
+  /// The state [S, V, b, iota] and its covariance (for tests).
+  [[nodiscard]] const Eigen::VectorXd& mean() const { return x_; }
+  [[nodiscard]] const Eigen::MatrixXd& covariance() const { return P_; }
+
+ private:
+  [[nodiscard]] bool planar() const { return options_.mode == "planar"; }
+  [[nodiscard]] int dim() const { return planar() ? 2 : 3; }
+  [[nodiscard]] Vec3 Position() const;
+  [[nodiscard]] StampsByReceiver Stamps(const core::Epoch& epoch, double t_ref_s) const;
+  /// The emission time (s) the epoch's earliest stamps imply at position p: their median of
+  /// T_first - |p - M_i| / c; empty without stamps.
+  [[nodiscard]] std::optional<double> ImpliedEmission(const core::Epoch& epoch, const Vec3& position_m) const;
+  void Start(const Vec3& position_m, double position_sigma_m);
+  void Predict(int intervals);
+  StepOutput Filter(const core::Epoch& epoch);
+  StepOutput Snapshot(const core::Epoch& epoch);
+  [[nodiscard]] AgentEstimate Estimate() const;
+
+  /// The inertial rows of this epoch: the increment since the last emission, if any.
+  std::optional<core::PositionIncrement> Increment(const core::Epoch& epoch);
+  [[nodiscard]] int clone_offset() const { return 2 * dim() + 2; }
+
+  AcousticOptions options_;
+  std::optional<estimation::PdrIntegrator> pdr_;  // started once the heading is known
+  bool pdr_started_ = false;
+  World world_;
+  double c_mps_ = 343.0;
+  double height_m_ = 0.0;
+  Eigen::VectorXd x_;
+  Eigen::MatrixXd P_;
+  double t_ref_s_ = 0.0;
+  bool started_ = false;         // a position is known
+  bool have_emission_ = false;   // b refers to an emission (set at the first epoch with stamps)
+  std::optional<Vec3> start_m_;  // a given start, waiting for its first emission
+  core::Rng rng_;                // the NLLS's random starts (fixed seed: results are reproducible)
+  AgentEstimate last_;
+};
+
+}  // namespace mirage::methods::acoustic

@@ -1,0 +1,74 @@
+// SPDX-License-Identifier: MIT
+// Options of the acoustic method family (Bordoy 2020 ch. 5): which estimator runs on the
+// microphones' stamps, its geometry mode, the stamp noise, the emission interval and the
+// safeguards, each with its own switch for the ablations.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "mirage/core/options_descriptor.h"
+#include "mirage/estimation/imu/pdr.h"
+#include "mirage/estimation/motion/constant_velocity.h"
+#include "mirage/estimation/robust/irls_update.h"
+
+namespace mirage::methods::acoustic {
+
+/// Options of the acoustic estimators.
+struct AcousticOptions {
+  /// "rekf": the robust EKF, Hampel-weighted iteratively reweighted least squares over the prior
+  /// and the stamps (Sec. 5.2, Eq. 5.24-5.30); "ekf": the same filter with every weight 1 (the
+  /// thesis's standard EKF); "nlls": a snapshot Levenberg-Marquardt fix per emission from random
+  /// starts using every microphone's stamp (the thesis's NLLS comparison).
+  std::string estimator = "rekf";
+  /// "planar": x, y at the world's known sender height (ch. 5: the combinatorial method and the
+  /// thesis's errors are 2-D); "3d": the height too.
+  std::string mode = "planar";
+  /// Standard deviation of one stamp as a distance (m), > 0. 0.103 m = 0.3 ms at 343 m/s, the
+  /// ch. 5 synthetic regime; derived from the scenario's stamp noise.
+  double range_sigma_m = 0.103;
+  /// The sender's nominal emission interval I (s), > 0. 0.1 s (the ch. 5 data: 128 337 fixes in
+  /// 213 min); derived: the scenario's step time.
+  double emission_interval_s = 0.1;
+  /// Standard deviation of the sender's emission-time jitter per interval (s), >= 0. 20 us:
+  /// a phone's audio clock ticks at 48 kHz.
+  double emission_jitter_s = 20e-6;
+  /// Largest rate error of the sender's clock (ppm), >= 0: the prior of the interval's error
+  /// (Sec. 6.2: up to +-50 ppm), estimated in the state so that (3.39) holds over minutes.
+  double clock_drift_ppm = 50.0;
+  /// The TDOA bound (Eq. 5.5): a stamp pair with |T_i - T_j| > |M_i - M_j| / c plus
+  /// tdoa_bound_sigmas * sqrt(2) sigma cannot both be direct paths; the stamp in most such pairs
+  /// is left out. Applied to every estimator (the thesis's Fig. 5.5 setting).
+  bool tdoa_bound_gate = true;
+  /// Noise margin of the TDOA bound in stamp sigmas, >= 0. 3.
+  double tdoa_bound_sigmas = 3.0;
+  /// Chi-square gate on one stamp's innovation (1 degree of freedom), >= 0; 0 = off (the thesis's
+  /// EKF and REKF have none: the REKF's weights do the rejecting).
+  double gate_chi2 = 0.0;
+  /// The REKF's reweighting (Hampel weights over the whitened prior and stamp rows). The plain
+  /// EKF ("ekf") uses the same update with every weight 1.
+  estimation::IrlsOptions irls;
+  /// Position standard deviation of a given start (m), > 0. 0.5 m.
+  double initial_position_sigma_m = 0.5;
+  /// Velocity standard deviation at the start (m/s), > 0. 1 m/s; derived: the walker's speed.
+  double initial_velocity_sigma_mps = 1.0;
+  /// Random starts of the snapshot NLLS, >= 1. 10.
+  int nlls_starts = 10;
+  /// Fuse the phone's dead reckoning (loose coupling, Eq. 5.35-5.39): position increments between
+  /// emissions, from the epochs' PositionIncrement records or from their IMU samples through
+  /// pedestrian dead reckoning, as rows S - S_prev = delta on a clone of the last position.
+  bool inertial = false;
+  /// Pedestrian dead reckoning of raw IMU samples. Its heading starts from the track's velocity
+  /// once the speed is above initial_velocity_sigma_mps and known to a third of itself.
+  estimation::PdrOptions pdr;
+  /// White-acceleration model of the sender (Eq. 5.31-5.34).
+  estimation::ConstantVelocityOptions motion;
+};
+
+/// The options' descriptor (keys, units, ranges, docs).
+const core::OptionsDescriptor<AcousticOptions>& AcousticOptionsDescriptor();
+
+/// Problems with the options ("key: message"), empty if valid.
+std::vector<std::string> Validate(const AcousticOptions& options);
+
+}  // namespace mirage::methods::acoustic

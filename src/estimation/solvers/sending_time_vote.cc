@@ -1,0 +1,405 @@
+// SPDX-License-Identifier: MIT
+#include "mirage/estimation/solvers/sending_time_vote.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <utility>
+
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
+
+namespace mirage::estimation {
+namespace {
+
+/// One (L, r) pair of peaks at a microphone.
+struct PeakPair {
+  int los_index = 0;
+  int ground_index = 0;
+  LosGroundStamps stamps;
+};
+
+/// One t_0 candidate and the two pairs that gave it.
+struct Candidate {
+  double t0_s = 0.0;
+  double gain = 0.0;
+  int emission = 0;
+  int mic_i = 0;
+  int pair_i = 0;
+  int mic_j = 0;
+  int pair_j = 0;
+};
+
+/// The (L, r) pairs of one microphone with 0 < T_r - T_L <= max_delay_s.
+std::vector<PeakPair> PairsOf(const std::vector<double>& stamps_s, double max_delay_s) {
+  std::vector<PeakPair> pairs;
+  for (std::size_t a = 0; a < stamps_s.size(); ++a) {
+    for (std::size_t b = 0; b < stamps_s.size(); ++b) {
+      const double delay_s = stamps_s[b] - stamps_s[a];
+      if (delay_s > 0.0 && delay_s <= max_delay_s) {
+        pairs.push_back({static_cast<int>(a), static_cast<int>(b), {stamps_s[a], stamps_s[b]}});
+      }
+    }
+  }
+  return pairs;
+}
+
+double MaxEchoDelay(const SendingTimeVoteOptions& options) { return 2.0 * options.max_sender_height_m / options.speed_mps; }
+
+/// Both pairs are physically possible for this t_0 (see VoteSendingTime).
+bool Plausible(const LosGroundStamps& p, double t0_s, const SendingTimeVoteOptions& options) {
+  const double los_rel_s = p.los_s - t0_s;
+  const double ground_rel_s = p.ground_s - t0_s;
+  if (!(los_rel_s > 0.0) || los_rel_s * options.speed_mps > options.max_range_m) return false;
+  const double c2 = options.speed_mps * options.speed_mps;
+  // |S_v - M|^2 - |S - M|^2 = 4 h_s h_m.
+  return (ground_rel_s * ground_rel_s - los_rel_s * los_rel_s) * c2 <=
+         4.0 * options.max_sender_height_m * options.max_mic_height_m;
+}
+
+}  // namespace
+
+std::optional<double> SendingTimeFromGroundEchoes(const LosGroundStamps& i, const LosGroundStamps& j,
+                                                  double min_delay_difference_s) {
+  // The denominator is 2 (d_i - d_j), d the echo delay.
+  const double delay_difference_s = (i.ground_s - i.los_s) - (j.ground_s - j.los_s);
+  if (!(std::abs(delay_difference_s) > min_delay_difference_s)) return std::nullopt;
+  // Relative to the earliest stamp: squares of ~10 ms instead of absolute stamps (digest SUG).
+  const double ref_s = std::min({i.los_s, i.ground_s, j.los_s, j.ground_s});
+  const double li = i.los_s - ref_s, ri = i.ground_s - ref_s, lj = j.los_s - ref_s, rj = j.ground_s - ref_s;
+  const double numerator_s2 = ri * ri - rj * rj - li * li + lj * lj;  // Eq. 8.77
+  return ref_s + numerator_s2 / (2.0 * delay_difference_s);
+}
+
+double SendingTimeNoiseGain(const LosGroundStamps& i, const LosGroundStamps& j, double t0_s) {
+  // dt_0/dT_k = +-(T_k - t_0) / (d_i - d_j), from differentiating Eq. 8.77.
+  const double delay_difference_s = (i.ground_s - i.los_s) - (j.ground_s - j.los_s);
+  if (delay_difference_s == 0.0) return std::numeric_limits<double>::infinity();
+  const double sum_s2 = std::pow(i.los_s - t0_s, 2) + std::pow(i.ground_s - t0_s, 2) +
+                        std::pow(j.los_s - t0_s, 2) + std::pow(j.ground_s - t0_s, 2);
+  return std::sqrt(sum_s2) / std::abs(delay_difference_s);
+}
+
+std::vector<std::string> Validate(const SendingTimeVoteOptions& options) {
+  std::vector<std::string> problems;
+  const auto positive = [&](double v, const char* what) {
+    if (!(v > 0.0 && std::isfinite(v))) problems.emplace_back(std::string(what) + " must be > 0 and finite");
+  };
+  positive(options.speed_mps, "speed_mps");
+  positive(options.max_sender_height_m, "max_sender_height_m");
+  positive(options.max_mic_height_m, "max_mic_height_m");
+  positive(options.max_range_m, "max_range_m");
+  positive(options.stamp_sigma_s, "stamp_sigma_s");
+  positive(options.max_noise_gain, "max_noise_gain");
+  positive(options.pile_sigmas, "pile_sigmas");
+  if (!(options.mic_height_spread_m >= 0.0 && std::isfinite(options.mic_height_spread_m))) {
+    problems.emplace_back("mic_height_spread_m must be >= 0 and finite");
+  }
+  if (!std::isfinite(options.pile_tolerance_s)) problems.emplace_back("pile_tolerance_s must be finite");
+  if (options.max_combinations < 1) problems.emplace_back("max_combinations must be >= 1");
+  return problems;
+}
+
+std::size_t CountVoteCombinations(std::span<const EmissionStamps> emissions, const SendingTimeVoteOptions& options) {
+  const double max_delay_s = MaxEchoDelay(options);
+  std::size_t total = 0;
+  for (const EmissionStamps& e : emissions) {
+    std::size_t sum = 0;  // running sum of P over the microphones before this one
+    for (const auto& stamps : e.mic_stamps_s) {
+      const std::size_t p = PairsOf(stamps, max_delay_s).size();
+      total += sum * p;
+      sum += p;
+    }
+  }
+  return total;
+}
+
+namespace {
+
+using PairTable = std::vector<std::vector<std::vector<PeakPair>>>;  // [emission][mic][pair]
+
+/// Chosen (mic -> pair index) per emission, -1 where none.
+using Selection = std::vector<std::vector<int>>;
+
+/// The thesis's steps 4-6: each candidate stands for the interval t_0 +- w_k; the pile is the set
+/// of intervals covering the most-covered instant (a sweep over the sorted interval ends). Fills
+/// t0_s (median), pile_size and the per-microphone votes.
+void ThesisPile(const std::vector<Candidate>& candidates, const PairTable& pairs,
+                const SendingTimeVoteOptions& options, SendingTimeVote* vote, Selection* selection) {
+  std::vector<double> half_width_s(candidates.size());
+  std::vector<std::pair<double, int>> events;  // (time, -1 open / +1 close): opens sort first
+  events.reserve(2 * candidates.size());
+  for (std::size_t k = 0; k < candidates.size(); ++k) {
+    half_width_s[k] = options.pile_tolerance_s > 0.0 ? options.pile_tolerance_s
+                                                     : options.pile_sigmas * options.stamp_sigma_s * candidates[k].gain;
+    events.emplace_back(candidates[k].t0_s - half_width_s[k], -1);
+    events.emplace_back(candidates[k].t0_s + half_width_s[k], +1);
+  }
+  std::sort(events.begin(), events.end());
+  int depth = 0, best_depth = 0;
+  double best_time_s = 0.0;
+  for (const auto& [time_s, kind] : events) {
+    depth -= kind;
+    if (depth > best_depth) {
+      best_depth = depth;
+      best_time_s = time_s;
+    }
+  }
+  std::vector<double> member_t0_s;
+  std::vector<std::vector<std::vector<int>>> votes(pairs.size());
+  for (std::size_t e = 0; e < pairs.size(); ++e) {
+    for (const auto& mic_pairs : pairs[e]) votes[e].emplace_back(mic_pairs.size(), 0);
+  }
+  for (std::size_t k = 0; k < candidates.size(); ++k) {
+    const Candidate& c = candidates[k];
+    if (std::abs(c.t0_s - best_time_s) > half_width_s[k]) continue;
+    member_t0_s.push_back(c.t0_s);
+    const auto e = static_cast<std::size_t>(c.emission);
+    ++votes[e][static_cast<std::size_t>(c.mic_i)][static_cast<std::size_t>(c.pair_i)];
+    ++votes[e][static_cast<std::size_t>(c.mic_j)][static_cast<std::size_t>(c.pair_j)];
+  }
+  std::sort(member_t0_s.begin(), member_t0_s.end());
+  const std::size_t size = member_t0_s.size();
+  const std::size_t mid = size / 2;
+  vote->t0_s = size % 2 == 1 ? member_t0_s[mid] : 0.5 * (member_t0_s[mid - 1] + member_t0_s[mid]);
+  vote->pile_size = static_cast<int>(size);
+  selection->assign(pairs.size(), {});
+  for (std::size_t e = 0; e < pairs.size(); ++e) {
+    (*selection)[e].assign(pairs[e].size(), -1);
+    for (std::size_t m = 0; m < pairs[e].size(); ++m) {
+      const auto& v = votes[e][m];
+      const auto best = std::max_element(v.begin(), v.end());  // first of equals: deterministic
+      if (best != v.end() && *best > 0) (*selection)[e][m] = static_cast<int>(best - v.begin());
+    }
+  }
+}
+
+/// K = (T_r - t)^2 - (T_L - t)^2 (s^2) of a pair under the hypothesis t, equal for every
+/// microphone of one emission (4 h_s h_m / c^2), and its tolerance.
+struct KEntry {
+  double k_s2 = 0.0;
+  double tol_s2 = 0.0;
+  int mic = 0;
+  int pair = 0;
+};
+
+/// The largest set of microphones of one emission whose pairs share K under hypothesis t_s:
+/// per microphone the pair index (or -1). Returns the number of microphones in it.
+int BestKCluster(const std::vector<std::vector<PeakPair>>& mic_pairs, double t_s,
+                 const SendingTimeVoteOptions& options, std::vector<int>* chosen, double* cost) {
+  const double c2 = options.speed_mps * options.speed_mps;
+  // Unequal microphone heights spread K by 4 h_s dh / c^2.
+  const double height_slack_s2 = 4.0 * options.max_sender_height_m * options.mic_height_spread_m / c2;
+  std::vector<KEntry> entries;
+  for (std::size_t m = 0; m < mic_pairs.size(); ++m) {
+    for (std::size_t p = 0; p < mic_pairs[m].size(); ++p) {
+      const LosGroundStamps& s = mic_pairs[m][p].stamps;
+      if (!Plausible(s, t_s, options)) continue;
+      const double los_s = s.los_s - t_s, ground_s = s.ground_s - t_s;
+      // dK/dT_r = 2 (T_r - t), dK/dT_L = -2 (T_L - t).
+      const double sigma_k_s2 = 2.0 * options.stamp_sigma_s * std::hypot(los_s, ground_s);
+      entries.push_back({ground_s * ground_s - los_s * los_s, options.pile_sigmas * sigma_k_s2 + height_slack_s2,
+                         static_cast<int>(m), static_cast<int>(p)});
+    }
+  }
+  std::sort(entries.begin(), entries.end(), [](const KEntry& a, const KEntry& b) { return a.k_s2 < b.k_s2; });
+  chosen->assign(mic_pairs.size(), -1);
+  int best_count = 0;
+  *cost = 0.0;
+  std::vector<double> best_distance(mic_pairs.size());
+  std::vector<int> members(mic_pairs.size());
+  for (const KEntry& centre : entries) {
+    std::fill(members.begin(), members.end(), -1);
+    std::fill(best_distance.begin(), best_distance.end(), std::numeric_limits<double>::infinity());
+    int count = 0;
+    double centre_cost = 0.0;
+    const auto lo = std::lower_bound(entries.begin(), entries.end(), centre.k_s2 - centre.tol_s2,
+                                     [](const KEntry& a, double v) { return a.k_s2 < v; });
+    for (auto it = lo; it != entries.end() && it->k_s2 <= centre.k_s2 + centre.tol_s2; ++it) {
+      const auto m = static_cast<std::size_t>(it->mic);
+      const double distance = std::abs(it->k_s2 - centre.k_s2);
+      if (members[m] < 0) ++count;
+      if (distance < best_distance[m]) {  // a microphone's pair nearest the centre
+        best_distance[m] = distance;
+        members[m] = it->pair;
+      }
+    }
+    for (std::size_t m = 0; m < members.size(); ++m) {
+      if (members[m] >= 0) centre_cost += std::pow(best_distance[m] / centre.tol_s2, 2);
+    }
+    // Most microphones; among equals the tightest (MSAC-like truncated squared residuals).
+    if (count > best_count || (count == best_count && centre_cost < *cost)) {
+      best_count = count;
+      *cost = centre_cost;
+      *chosen = members;
+    }
+  }
+  return best_count;
+}
+
+/// Weighted least squares of t_0 and one K_e per emission from the selected pairs:
+/// 2 d_m t_0 + K_e = d_m (T_r,m + T_L,m) (Eq. 8.77 generalised to any number of microphones;
+/// with two it is 8.77). Weights 1 / (4 sigma^2 ((T_r - t)^2 + (T_L - t)^2)) at the current t.
+/// Returns t_0 and its standard deviation (s).
+std::optional<std::pair<double, double>> RefineSendingTime(const PairTable& pairs, const Selection& selection, double t_s,
+                                        const SendingTimeVoteOptions& options) {
+  const auto emissions = static_cast<Eigen::Index>(pairs.size());
+  Eigen::MatrixXd normal = Eigen::MatrixXd::Zero(emissions + 1, emissions + 1);
+  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(emissions + 1);
+  int used_emissions = 0;
+  for (std::size_t e = 0; e < pairs.size(); ++e) {
+    int rows = 0;
+    for (std::size_t m = 0; m < pairs[e].size(); ++m) rows += selection[e][m] >= 0 ? 1 : 0;
+    const auto col = static_cast<Eigen::Index>(e) + 1;
+    if (rows < 2) {  // K_e undetermined: pin it out of the system
+      normal(col, col) = 1.0;
+      continue;
+    }
+    ++used_emissions;
+    for (std::size_t m = 0; m < pairs[e].size(); ++m) {
+      if (selection[e][m] < 0) continue;
+      const LosGroundStamps& s = pairs[e][m][static_cast<std::size_t>(selection[e][m])].stamps;
+      const double delay_s = s.ground_s - s.los_s;
+      // Relative to t_s so that the right side is small (no cancellation).
+      const double y = delay_s * (s.ground_s - t_s + s.los_s - t_s);
+      const double w = 1.0 / (4.0 * options.stamp_sigma_s * options.stamp_sigma_s *
+                              (std::pow(s.ground_s - t_s, 2) + std::pow(s.los_s - t_s, 2)));
+      Eigen::VectorXd row = Eigen::VectorXd::Zero(emissions + 1);
+      row(0) = 2.0 * delay_s;
+      row(col) = 1.0;
+      normal += w * row * row.transpose();
+      rhs += w * y * row;
+    }
+  }
+  if (used_emissions == 0) return std::nullopt;
+  const Eigen::LDLT<Eigen::MatrixXd> ldlt(normal);
+  if (ldlt.info() != Eigen::Success || !(ldlt.vectorD().minCoeff() > 0.0)) return std::nullopt;
+  const Eigen::VectorXd x = ldlt.solve(rhs);
+  const Eigen::VectorXd e0 = Eigen::VectorXd::Unit(emissions + 1, 0);
+  // x(0) is the offset from t_s; (N^-1)_00 its variance.
+  return std::make_pair(t_s + x(0), std::sqrt(ldlt.solve(e0)(0)));
+}
+
+/// Consensus: every candidate t_0 (deduplicated to one per stamp_sigma_s) is a hypothesis; its
+/// score is, summed over emissions, the microphones beyond two whose (L, r) pairs share K (two
+/// always do, for the hypotheses they generate). The best hypothesis's clusters are the chosen
+/// stamps; t_0 is then refined by RefineSendingTime, re-clustered and refined once more.
+void Consensus(std::vector<Candidate> candidates, const PairTable& pairs, const SendingTimeVoteOptions& options,
+               SendingTimeVote* vote, Selection* selection) {
+  std::sort(candidates.begin(), candidates.end(),
+            [](const Candidate& a, const Candidate& b) { return a.t0_s < b.t0_s; });
+  struct Score {
+    int redundant = -1;  // inlier microphones beyond two, summed over emissions
+    double cost = 0.0;   // their truncated squared residuals
+    int inliers = 0;
+    [[nodiscard]] bool Beats(const Score& o) const {
+      return redundant > o.redundant || (redundant == o.redundant && cost < o.cost);
+    }
+  };
+  const auto score_of = [&](double t_s, Selection* chosen) {
+    Score score{0, 0.0, 0};
+    chosen->assign(pairs.size(), {});
+    for (std::size_t e = 0; e < pairs.size(); ++e) {
+      double cost = 0.0;
+      const int count = BestKCluster(pairs[e], t_s, options, &(*chosen)[e], &cost);
+      if (count < 3) {
+        std::fill((*chosen)[e].begin(), (*chosen)[e].end(), -1);
+        continue;
+      }
+      score.redundant += count - 2;
+      score.cost += cost;
+      score.inliers += count;
+    }
+    return score;
+  };
+  Score best;
+  double best_t_s = candidates.front().t0_s;
+  double last_t_s = -std::numeric_limits<double>::infinity();
+  Selection chosen;
+  for (const Candidate& c : candidates) {
+    if (c.t0_s - last_t_s < options.stamp_sigma_s) continue;
+    last_t_s = c.t0_s;
+    const Score score = score_of(c.t0_s, &chosen);
+    if (score.Beats(best)) {
+      best = score;
+      best_t_s = c.t0_s;
+    }
+  }
+  double t_s = best_t_s;
+  best = score_of(t_s, selection);
+  for (int iteration = 0; iteration < 2; ++iteration) {
+    const auto refined = RefineSendingTime(pairs, *selection, t_s, options);
+    if (!refined) break;
+    Selection again;
+    const Score score = score_of(refined->first, &again);
+    if (score.redundant < best.redundant) break;  // keep the better-supported hypothesis
+    t_s = refined->first;
+    *selection = std::move(again);
+    best = score;
+  }
+  if (const auto final_t = RefineSendingTime(pairs, *selection, t_s, options)) {
+    t_s = final_t->first;
+    vote->t0_sigma_s = final_t->second;
+  }
+  vote->t0_s = t_s;
+  vote->pile_size = best.inliers;
+}
+
+}  // namespace
+
+std::optional<SendingTimeVote> VoteSendingTime(std::span<const EmissionStamps> emissions,
+                                               const SendingTimeVoteOptions& options) {
+  if (!Validate(options).empty()) return std::nullopt;
+  const std::size_t combinations = CountVoteCombinations(emissions, options);
+  if (combinations > options.max_combinations) return std::nullopt;
+  const double max_delay_s = MaxEchoDelay(options);
+
+  // Steps 1-3 of Sec. 8.4 for every 4-tuple.
+  PairTable pairs(emissions.size());
+  std::vector<Candidate> candidates;
+  for (std::size_t e = 0; e < emissions.size(); ++e) {
+    const auto& mics = emissions[e].mic_stamps_s;
+    for (const auto& stamps : mics) pairs[e].push_back(PairsOf(stamps, max_delay_s));
+    for (std::size_t i = 0; i < mics.size(); ++i) {
+      for (std::size_t j = i + 1; j < mics.size(); ++j) {
+        for (std::size_t pi = 0; pi < pairs[e][i].size(); ++pi) {
+          for (std::size_t pj = 0; pj < pairs[e][j].size(); ++pj) {
+            const LosGroundStamps& a = pairs[e][i][pi].stamps;
+            const LosGroundStamps& b = pairs[e][j][pj].stamps;
+            const auto t0_s = SendingTimeFromGroundEchoes(a, b);
+            if (!t0_s) continue;
+            const double gain = SendingTimeNoiseGain(a, b, *t0_s);
+            if (gain > options.max_noise_gain) continue;
+            if (!Plausible(a, *t0_s, options) || !Plausible(b, *t0_s, options)) continue;
+            candidates.push_back({*t0_s, gain, static_cast<int>(e), static_cast<int>(i), static_cast<int>(pi),
+                                  static_cast<int>(j), static_cast<int>(pj)});
+          }
+        }
+      }
+    }
+  }
+  if (candidates.empty()) return std::nullopt;
+
+  SendingTimeVote vote;
+  vote.combinations = combinations;
+  vote.candidates = candidates.size();
+  Selection selection;
+  if (options.method == SendingTimeVoteMethod::kThesisPile) {
+    ThesisPile(candidates, pairs, options, &vote, &selection);
+  } else {
+    Consensus(std::move(candidates), pairs, options, &vote, &selection);
+  }
+  vote.chosen.resize(emissions.size());
+  for (std::size_t e = 0; e < emissions.size(); ++e) {
+    vote.chosen[e].resize(pairs[e].size());
+    for (std::size_t m = 0; m < pairs[e].size(); ++m) {
+      const int p = selection[e][m];
+      if (p < 0) continue;
+      const PeakPair& pair = pairs[e][m][static_cast<std::size_t>(p)];
+      vote.chosen[e][m] = {pair.los_index, pair.ground_index};
+    }
+  }
+  return vote;
+}
+
+}  // namespace mirage::estimation

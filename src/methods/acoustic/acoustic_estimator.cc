@@ -1,0 +1,340 @@
+// SPDX-License-Identifier: MIT
+#include "mirage/methods/acoustic/acoustic_estimator.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "mirage/estimation/meas/toa.h"
+#include "mirage/estimation/robust/hampel.h"
+#include "mirage/estimation/solvers/toa_nlls.h"
+
+namespace mirage::methods::acoustic {
+
+std::vector<ChosenStamp> ApplyTdoaBound(std::vector<ChosenStamp> chosen, std::span<const Anchor> receivers,
+                                        double margin_m) {
+  while (chosen.size() > 1) {
+    std::vector<int> violations(chosen.size(), 0);
+    int worst_count = 0;
+    for (std::size_t i = 0; i < chosen.size(); ++i) {
+      for (std::size_t j = i + 1; j < chosen.size(); ++j) {
+        const double baseline_m = (receivers[static_cast<std::size_t>(chosen[i].receiver)].position_m -
+                                   receivers[static_cast<std::size_t>(chosen[j].receiver)].position_m)
+                                      .norm();
+        if (std::abs(chosen[i].z_m - chosen[j].z_m) > baseline_m + margin_m) {
+          worst_count = std::max({worst_count, ++violations[i], ++violations[j]});
+        }
+      }
+    }
+    if (worst_count == 0) break;
+    // The stamp in most violations; among equals the latest (an echo or a delayed direct path
+    // arrives late, never early).
+    std::size_t worst = chosen.size();
+    for (std::size_t i = 0; i < chosen.size(); ++i) {
+      if (violations[i] != worst_count) continue;
+      if (worst == chosen.size() || chosen[i].z_m > chosen[worst].z_m) worst = i;
+    }
+    chosen.erase(chosen.begin() + static_cast<long>(worst));
+  }
+  return chosen;
+}
+
+AcousticEstimator::AcousticEstimator(const AcousticOptions& options, const World& world)
+    : options_(options), world_(world), rng_(1) {
+  if (const auto problems = Validate(options_); !problems.empty()) throw std::invalid_argument("acoustic: " + problems.front());
+  if (world_.anchors.size() < 3) throw std::invalid_argument("acoustic: at least 3 microphones are needed");
+  c_mps_ = world_.channel.medium.speed_mps;
+  height_m_ = world_.agent_height_m.value_or(0.0);
+}
+
+Vec3 AcousticEstimator::Position() const {
+  if (planar()) return {x_(0), x_(1), height_m_};
+  return x_.head<3>();
+}
+
+AgentEstimate AcousticEstimator::Estimate() const {
+  AgentEstimate out;
+  const int d = dim();
+  out.position_m = Position();
+  out.covariance_m2.topLeftCorner(d, d) = P_.topLeftCorner(d, d);
+  return out;
+}
+
+void AcousticEstimator::Start(const Vec3& position_m, double position_sigma_m) {
+  const int d = dim();
+  const int n = 2 * d + 2 + (options_.inertial ? 2 : 0);
+  x_ = Eigen::VectorXd::Zero(n);
+  x_.head(d) = position_m.head(d);
+  P_ = Eigen::MatrixXd::Zero(n, n);
+  P_.topLeftCorner(d, d).diagonal().setConstant(position_sigma_m * position_sigma_m);
+  P_.block(d, d, d, d).diagonal().setConstant(options_.initial_velocity_sigma_mps * options_.initial_velocity_sigma_mps);
+  // b is set by the first emission: its variance covers the position's effect on the ranges
+  // plus the stamps' noise.
+  P_(2 * d, 2 * d) = position_sigma_m * position_sigma_m + options_.range_sigma_m * options_.range_sigma_m;
+  const double iota_sigma_m = c_mps_ * options_.emission_interval_s * options_.clock_drift_ppm * 1e-6;
+  P_(2 * d + 1, 2 * d + 1) = std::max(iota_sigma_m * iota_sigma_m, 1e-12);
+  if (options_.inertial) {
+    // The clone starts as a copy of the position (fully correlated with it).
+    x_.segment<2>(clone_offset()) = x_.head<2>();
+    P_.block(clone_offset(), 0, 2, n) = P_.block(0, 0, 2, n);
+    P_.block(0, clone_offset(), n, 2) = P_.block(0, 0, n, 2);
+    P_.block<2, 2>(clone_offset(), clone_offset()) = P_.topLeftCorner<2, 2>();
+  }
+  started_ = true;
+  have_emission_ = false;
+}
+
+void AcousticEstimator::Initialize(const Prior& prior) {
+  Start(prior.positions_m.front(), options_.initial_position_sigma_m);
+  last_ = Estimate();
+}
+
+bool AcousticEstimator::InitializeFromEpoch(const core::Epoch& /*epoch*/) { return false; }
+
+StampsByReceiver AcousticEstimator::Stamps(const core::Epoch& epoch, double t_ref_s) const {
+  StampsByReceiver out(world_.anchors.size());
+  for (const auto& record : epoch.toas) {
+    auto& list = out.at(static_cast<std::size_t>(record.receiver_index));
+    for (const double toa_s : record.toa_s) list.push_back(c_mps_ * (toa_s - t_ref_s));
+  }
+  return out;
+}
+
+std::optional<double> AcousticEstimator::ImpliedEmission(const core::Epoch& epoch, const Vec3& position_m) const {
+  std::vector<double> emissions_s;
+  for (const auto& record : epoch.toas) {
+    if (record.toa_s.empty()) continue;
+    const double first_s = *std::min_element(record.toa_s.begin(), record.toa_s.end());
+    const Vec3& mic = world_.anchors.at(static_cast<std::size_t>(record.receiver_index)).position_m;
+    emissions_s.push_back(first_s - (position_m - mic).norm() / c_mps_);
+  }
+  if (emissions_s.empty()) return std::nullopt;
+  return estimation::Median(emissions_s);
+}
+
+void AcousticEstimator::Predict(int intervals) {
+  const int d = dim();
+  const int n = static_cast<int>(x_.size());
+  if (options_.inertial) {
+    // The clone takes the last emission's horizontal position (a copy: T x, T P T^T).
+    Eigen::MatrixXd T = Eigen::MatrixXd::Identity(n, n);
+    T.block<2, 2>(clone_offset(), clone_offset()).setZero();
+    T.block<2, 2>(clone_offset(), 0).setIdentity();
+    x_ = T * x_;
+    P_ = T * P_ * T.transpose();
+  }
+  const double dt_s = intervals * options_.emission_interval_s;
+  Eigen::MatrixXd F = Eigen::MatrixXd::Identity(n, n);
+  F.block(0, d, d, d).diagonal().setConstant(dt_s);
+  F(2 * d, 2 * d + 1) = intervals;  // b gains iota per interval
+  Eigen::MatrixXd Q = Eigen::MatrixXd::Zero(n, n);
+  // G Q G^T of Eq. 5.33-5.34: a constant acceleration over the step, white between steps.
+  const double qa = options_.motion.accel_sigma_mps2 * options_.motion.accel_sigma_mps2;
+  Q.topLeftCorner(d, d).diagonal().setConstant(qa * std::pow(dt_s, 4) / 4.0);
+  Q.block(0, d, d, d).diagonal().setConstant(qa * std::pow(dt_s, 3) / 2.0);
+  Q.block(d, 0, d, d).diagonal().setConstant(qa * std::pow(dt_s, 3) / 2.0);
+  Q.block(d, d, d, d).diagonal().setConstant(qa * dt_s * dt_s);
+  const double jitter_m = c_mps_ * options_.emission_jitter_s;
+  Q(2 * d, 2 * d) = intervals * jitter_m * jitter_m;
+  x_ = F * x_;
+  P_ = F * P_ * F.transpose() + Q;
+  t_ref_s_ += intervals * options_.emission_interval_s;
+}
+
+std::optional<core::PositionIncrement> AcousticEstimator::Increment(const core::Epoch& epoch) {
+  if (!options_.inertial) return std::nullopt;
+  if (!epoch.increments.empty()) {
+    // Dead-reckoning records: their sum over the epoch (one per emission in simulations).
+    core::PositionIncrement sum = epoch.increments.front();
+    for (std::size_t i = 1; i < epoch.increments.size(); ++i) {
+      sum.delta_m += epoch.increments[i].delta_m;
+      sum.covariance_m2 += epoch.increments[i].covariance_m2;
+      sum.t_s = epoch.increments[i].t_s;
+    }
+    return sum;
+  }
+  if (epoch.imus.empty()) return std::nullopt;
+  if (!pdr_started_) {
+    // The phone's heading in the hall's frame is unknown to the IMU (no magnetometer indoors,
+    // Sec. 5.2): take it from the track's velocity once that is well determined.
+    const int d = dim();
+    const Vec2 v = x_.segment<2>(d);
+    const double sv = std::sqrt(P_.block<2, 2>(d, d).trace());
+    if (v.norm() < options_.initial_velocity_sigma_mps || sv > v.norm() / 3.0) return std::nullopt;
+    pdr_.emplace(options_.pdr);
+    pdr_->Reset(epoch.imus.front().t_s, std::atan2(v.y(), v.x()), sv / v.norm());
+    pdr_started_ = true;
+  }
+  for (const auto& sample : epoch.imus) pdr_->Add(sample);
+  const auto increment = pdr_->TakeIncrement();
+  core::PositionIncrement out;
+  out.t_s = increment.t_to_s;
+  out.t_from_s = increment.t_from_s;
+  out.delta_m = increment.delta_m;
+  out.covariance_m2 = increment.covariance_m2;
+  return out;
+}
+
+StepOutput AcousticEstimator::Filter(const core::Epoch& epoch) {
+  StepOutput out;
+  const int d = dim();
+  const int n = static_cast<int>(x_.size());
+  if (!have_emission_) {
+    const auto emission_s = ImpliedEmission(epoch, Position());
+    if (!emission_s) {
+      out.agents.push_back(Estimate());
+      return out;
+    }
+    t_ref_s_ = *emission_s;
+    x_(2 * d) = 0.0;
+    have_emission_ = true;
+    (void)Increment(epoch);  // starts the dead reckoning's interval
+  } else {
+    // Elapsed intervals (Eq. 3.39) between the last emission and the one these stamps imply.
+    const double last_emission_s = t_ref_s_ + x_(2 * d) / c_mps_;
+    const auto emission_s = ImpliedEmission(epoch, Position());
+    const double t_new_s = emission_s.value_or(epoch.t_s);
+    const int intervals = std::max(1, static_cast<int>(std::lround((t_new_s - last_emission_s) / options_.emission_interval_s)));
+    Predict(intervals);
+  }
+
+  // Per microphone the stamp nearest the prediction.
+  const StampsByReceiver stamps = Stamps(epoch, t_ref_s_);
+  const Vec3 sender_m = Position();
+  std::vector<ChosenStamp> chosen;
+  for (std::size_t i = 0; i < stamps.size(); ++i) {
+    if (stamps[i].empty()) continue;
+    const auto prediction = estimation::PredictToa(sender_m, world_.anchors[i].position_m, x_(2 * d));
+    if (!prediction) continue;
+    double best = stamps[i].front();
+    for (const double z : stamps[i]) {
+      if (std::abs(z - prediction->predicted_m) < std::abs(best - prediction->predicted_m)) best = z;
+    }
+    chosen.push_back({static_cast<int>(i), best});
+  }
+  if (options_.tdoa_bound_gate) {
+    chosen = ApplyTdoaBound(std::move(chosen), world_.anchors, options_.tdoa_bound_sigmas * std::sqrt(2.0) * options_.range_sigma_m);
+  }
+
+  // The rows: z = |S - M_i| + b, d z / d S = u_i, d z / d b = 1.
+  const double r_m2 = options_.range_sigma_m * options_.range_sigma_m;
+  Eigen::MatrixXd H = Eigen::MatrixXd::Zero(static_cast<long>(chosen.size()), n);
+  Eigen::VectorXd innovation(static_cast<long>(chosen.size()));
+  long rows = 0;
+  for (const auto& c : chosen) {
+    const auto prediction =
+        estimation::PredictToa(sender_m, world_.anchors[static_cast<std::size_t>(c.receiver)].position_m, x_(2 * d));
+    if (!prediction) continue;
+    const double nu = c.z_m - prediction->predicted_m;
+    if (options_.gate_chi2 > 0.0) {
+      Eigen::RowVectorXd h = Eigen::RowVectorXd::Zero(n);
+      h.head(d) = prediction->d_sender.head(d).transpose();
+      h(2 * d) = 1.0;
+      const double s_m2 = (h * P_ * h.transpose())(0, 0) + r_m2;
+      if (nu * nu > options_.gate_chi2 * s_m2) continue;
+    }
+    H.row(rows).head(d) = prediction->d_sender.head(d).transpose();
+    H(rows, 2 * d) = 1.0;
+    innovation(rows) = nu;
+    ++rows;
+  }
+  const long stamp_rows = rows;
+  const auto increment = have_emission_ ? Increment(epoch) : std::nullopt;
+  const long inertial_rows = increment ? 2 : 0;
+  H.conservativeResize(rows + inertial_rows, n);
+  innovation.conservativeResize(rows + inertial_rows);
+  Eigen::MatrixXd R = Eigen::MatrixXd::Zero(rows + inertial_rows, rows + inertial_rows);
+  R.topLeftCorner(rows, rows).diagonal().setConstant(r_m2);
+  if (increment) {
+    // S_xy - S_prev = delta (Eq. 5.38-5.39 on the clone).
+    H.bottomRows(2).setZero();
+    H.bottomRows(2).leftCols(2).setIdentity();
+    H.bottomRows(2).middleCols(clone_offset(), 2) = -Eigen::Matrix2d::Identity();
+    innovation.tail(2) = increment->delta_m - (x_.head<2>() - x_.segment<2>(clone_offset()));
+    // A floor keeps R positive definite for an increment of zero length and zero covariance.
+    R.bottomRightCorner(2, 2) = increment->covariance_m2 + 1e-6 * Eigen::Matrix2d::Identity();
+    rows += 2;
+  }
+  if (rows > 0) {
+    estimation::IrlsOptions irls = options_.irls;
+    irls.robust = options_.estimator == "rekf";
+    if (const auto update = estimation::IrlsUpdate(P_, H, innovation, R, irls)) {
+      x_ += update->dx;
+      P_ = 0.5 * (update->P + update->P.transpose());
+      // Rows whose weight stayed positive entered the estimate.
+      for (long i = 0; i < stamp_rows; ++i) out.associations += update->weights(n + i) > 0.0 ? 1 : 0;
+    } else {
+      out.rejected_update = true;
+    }
+  }
+  out.expected = static_cast<int>(world_.anchors.size());
+  out.agents.push_back(Estimate());
+  return out;
+}
+
+StepOutput AcousticEstimator::Snapshot(const core::Epoch& epoch) {
+  StepOutput out;
+  out.expected = static_cast<int>(world_.anchors.size());
+  // Each microphone's earliest stamp (the direct path when it was heard), as c (T - t_epoch).
+  const StampsByReceiver stamps = Stamps(epoch, epoch.t_s);
+  std::vector<ChosenStamp> chosen;
+  for (std::size_t i = 0; i < stamps.size(); ++i) {
+    if (!stamps[i].empty()) chosen.push_back({static_cast<int>(i), *std::min_element(stamps[i].begin(), stamps[i].end())});
+  }
+  if (options_.tdoa_bound_gate) {
+    chosen = ApplyTdoaBound(std::move(chosen), world_.anchors, options_.tdoa_bound_sigmas * std::sqrt(2.0) * options_.range_sigma_m);
+  }
+  const std::size_t unknowns = planar() ? 3 : 4;
+  if (chosen.size() < unknowns) {
+    out.agents.push_back(last_);  // no fix: the last one stands, the epoch counts as a failure
+    out.fixed = false;
+    return out;
+  }
+  std::vector<Vec3> mics;
+  std::vector<double> rho_m, sigma_m;
+  for (const auto& c : chosen) {
+    mics.push_back(world_.anchors[static_cast<std::size_t>(c.receiver)].position_m);
+    rho_m.push_back(c.z_m);
+    sigma_m.push_back(options_.range_sigma_m);
+  }
+  // Random starts over the microphones' footprint (the thesis's random initialisation), the
+  // emission offset of each start from the median of its implied offsets.
+  Vec3 lo = mics.front(), hi = mics.front();
+  for (const auto& m : mics) {
+    lo = lo.cwiseMin(m);
+    hi = hi.cwiseMax(m);
+  }
+  estimation::NllsOptions nlls;
+  if (planar()) nlls.known_height_m = height_m_;
+  std::optional<estimation::SolverFix> best;
+  for (int k = 0; k < options_.nlls_starts; ++k) {
+    Vec3 start(rng_.Uniform(lo.x(), hi.x()), rng_.Uniform(lo.y(), hi.y()), planar() ? height_m_ : rng_.Uniform(0.0, lo.z()));
+    std::vector<double> implied;
+    for (std::size_t i = 0; i < mics.size(); ++i) implied.push_back(rho_m[i] - (start - mics[i]).norm());
+    const auto fix = estimation::SolveToaNlls(mics, rho_m, sigma_m, start, estimation::Median(implied), nlls);
+    if (!fix.converged || fix.degenerate()) continue;
+    if (!best || fix.rms_m < best->rms_m) best = fix;
+  }
+  if (!best) {
+    out.agents.push_back(last_);
+    out.fixed = false;
+    return out;
+  }
+  out.associations = static_cast<int>(chosen.size());
+  AgentEstimate estimate;
+  estimate.position_m = best->position_m;
+  if (planar()) estimate.position_m.z() = height_m_;
+  const int d = dim();
+  estimate.covariance_m2.topLeftCorner(d, d) = best->covariance_m2.topLeftCorner(d, d);
+  out.agents.push_back(estimate);
+  return out;
+}
+
+StepOutput AcousticEstimator::Process(const core::Epoch& epoch) {
+  StepOutput out = options_.estimator == "nlls" ? Snapshot(epoch) : Filter(epoch);
+  last_ = out.agents.front();
+  return out;
+}
+
+}  // namespace mirage::methods::acoustic

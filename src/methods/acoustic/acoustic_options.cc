@@ -1,0 +1,89 @@
+// SPDX-License-Identifier: MIT
+#include "mirage/methods/acoustic/acoustic_options.h"
+
+#include "mirage/core/derived_defaults.h"
+
+namespace mirage::methods::acoustic {
+
+const core::OptionsDescriptor<AcousticOptions>& AcousticOptionsDescriptor() {
+  using core::ValueRange;
+  using O = AcousticOptions;
+  static const auto descriptor = [] {
+    core::OptionsDescriptor<O> d("methods::acoustic::AcousticOptions");
+    d.Choice(&O::estimator,
+             {.key = "estimator",
+              .doc = "rekf: the robust EKF, Hampel-weighted reweighting of the prior and the stamps (Bordoy 2020 Eq. "
+                     "5.24-5.30); ekf: the same filter with every weight 1; nlls: a Levenberg-Marquardt fix per "
+                     "emission from random starts with every microphone's stamp."},
+             {"rekf", "ekf", "nlls"});
+    d.Choice(&O::mode,
+             {.key = "mode",
+              .doc = "planar: x, y at the world's known sender height (ch. 5, errors in 2-D); 3d: the height too."},
+             {"planar", "3d"});
+    d.Number(&O::range_sigma_m, {.key = "range_sigma_m",
+                                 .unit = "m",
+                                 .range = ValueRange::Above(0.0),
+                                 .doc = "Standard deviation of one stamp as a distance. 0.103 m = 0.3 ms at 343 m/s (the "
+                                        "ch. 5 synthetic regime); derived from the scenario's stamp noise.",
+                                 .derived = core::RangeSigmas(1.0)});
+    d.Number(&O::emission_interval_s,
+             {.key = "emission_interval_s",
+              .unit = "s",
+              .range = ValueRange::Above(0.0),
+              .doc = "The sender's nominal emission interval I. 0.1 s (the ch. 5 data: 128 337 fixes in 213 min); "
+                     "derived: the scenario's step time.",
+              .derived = core::DerivedDefault{.formula = "dt_s",
+                                              .needs = {core::PhysicalKey::kStepTime},
+                                              .compute = [](const core::PhysicalKeys& k) { return *k.dt_s; }}});
+    d.Number(&O::emission_jitter_s, {.key = "emission_jitter_s",
+                                     .unit = "s",
+                                     .range = ValueRange::AtLeast(0.0),
+                                     .doc = "Standard deviation of the emission time's jitter per interval. 20 us: a "
+                                            "phone's audio clock ticks at 48 kHz."});
+    d.Number(&O::clock_drift_ppm, {.key = "clock_drift_ppm",
+                                   .unit = "ppm",
+                                   .range = ValueRange::AtLeast(0.0),
+                                   .doc = "Largest rate error of the sender's clock: the prior of the interval's error, "
+                                          "which the filter estimates (Eq. 3.39 over minutes). 50 ppm."});
+    d.Boolean(&O::tdoa_bound_gate, {.key = "tdoa_bound_gate",
+                                    .doc = "Leave out stamps that violate the TDOA bound |T_i - T_j| <= |M_i - M_j| / c "
+                                           "(Eq. 5.5) against most other microphones."});
+    d.Number(&O::tdoa_bound_sigmas, {.key = "tdoa_bound_sigmas",
+                                     .range = ValueRange::AtLeast(0.0),
+                                     .doc = "Noise margin of the TDOA bound in stamp sigmas (times sqrt 2 for the "
+                                            "difference). 3."});
+    d.Number(&O::gate_chi2, {.key = "gate_chi2",
+                             .range = ValueRange::AtLeast(0.0),
+                             .doc = "Chi-square gate on one stamp's innovation (1 degree of freedom); 0 = off, as in "
+                                    "the thesis (the REKF's weights do the rejecting)."});
+    d.Section(&O::irls, {.key = "irls", .doc = "The REKF's reweighting; ekf runs it with every weight 1."},
+              estimation::IrlsOptionsDescriptor());
+    d.Number(&O::initial_position_sigma_m, {.key = "initial_position_sigma_m",
+                                            .unit = "m",
+                                            .range = ValueRange::Above(0.0),
+                                            .doc = "Position standard deviation of a given start. 0.5 m."});
+    d.Number(&O::initial_velocity_sigma_mps, {.key = "initial_velocity_sigma_mps",
+                                              .unit = "m/s",
+                                              .range = ValueRange::Above(0.0),
+                                              .doc = "Velocity standard deviation at the start. 1 m/s; derived: the "
+                                                     "walker's speed in an unknown direction.",
+                                              .derived = core::SpeedTimes(1.0)});
+    d.Integer(&O::nlls_starts, {.key = "nlls_starts",
+                                .range = ValueRange::Closed(1.0, 1000.0),
+                                .doc = "Random starts of the snapshot NLLS per emission. 10."});
+    d.Boolean(&O::inertial, {.key = "inertial",
+                             .doc = "Fuse the phone's dead reckoning (Eq. 5.35-5.39): position increments between "
+                                    "emissions (PositionIncrement records, or IMU samples through pedestrian dead "
+                                    "reckoning) as rows on a clone of the previous position."});
+    d.Section(&O::pdr, {.key = "pdr", .doc = "Pedestrian dead reckoning of raw IMU samples."},
+              estimation::PdrOptionsDescriptor());
+    d.Section(&O::motion, {.key = "motion", .doc = "White-acceleration model of the sender (Eq. 5.31-5.34)."},
+              estimation::ConstantVelocityOptionsDescriptor());
+    return d;
+  }();
+  return descriptor;
+}
+
+std::vector<std::string> Validate(const AcousticOptions& options) { return AcousticOptionsDescriptor().Validate(options); }
+
+}  // namespace mirage::methods::acoustic
