@@ -1,0 +1,118 @@
+// SPDX-License-Identifier: MIT
+// The acoustic family's hot spots on input from the ch. 5 simulator at a fixed seed (Bordoy 2020
+// Sec. 5.3 regime: 0.3 ms stamp noise, 40 % NLOS delayed by U(3, 13) ms) in the 15 m x 11 m hall
+// with 12 microphones and first-order echoes, so that each microphone has about K = 2 stamps:
+// the combinatorial LOS fix, one REKF update (IRLS over 6 prior and 12 stamp rows) and the two
+// closed-form solvers.
+#include <algorithm>
+#include <array>
+#include <vector>
+
+#include <benchmark/benchmark.h>
+
+#include "mirage/channel/acoustic_stamps.h"
+#include "mirage/core/rng.h"
+#include "mirage/estimation/meas/toa.h"
+#include "mirage/estimation/robust/irls_update.h"
+#include "mirage/estimation/solvers/closed_form_tdoa_2d.h"
+#include "mirage/estimation/solvers/closed_form_toa_3d.h"
+#include "mirage/geometry/reflector_3d.h"
+#include "mirage/methods/acoustic/los_identification.h"
+
+namespace mirage::bench {
+namespace {
+
+constexpr double kHeight_m = 1.2;
+
+std::vector<Vec3> HallMics() {
+  return {{1.5, 1.5, 4.851}, {7.5, 1.2, 4.824}, {13.5, 1.5, 4.879}, {1.2, 5.5, 4.835}, {7.5, 5.5, 4.860}, {13.8, 5.5, 4.862},
+          {1.5, 9.5, 4.844}, {7.5, 9.8, 4.851}, {13.5, 9.5, 4.870}, {5.0, 4.0, 3.40},  {10.0, 7.0, 3.40}, {4.0, 8.5, 3.40}};
+}
+
+// One emission's stamps per microphone as pseudo-ranges c (T - t_emit) (m), the K = 2 earliest.
+std::vector<std::vector<double>> Ch5Emission(const Vec3& sender_m, std::uint64_t seed) {
+  channel::AcousticStampOptions o;
+  o.max_order = 1;
+  o.nlos_fraction = 0.4;
+  const auto hall = geometry::ShoeboxReflectors(15.0, 11.0, 5.2, 0.95);
+  core::Rng rng(seed);
+  const auto mics = HallMics();
+  const auto emission = channel::SimulateEmission(o, hall, mics, sender_m, Vec2::Zero(), 0.0, rng);
+  const double c = channel::SoundSpeedMps(o.temperature_c);
+  std::vector<std::vector<double>> out(mics.size());
+  for (std::size_t m = 0; m < mics.size(); ++m) {
+    for (const auto& s : emission.stamps[m]) {
+      if (out[m].size() < 2) out[m].push_back(c * s.toa_s);
+    }
+  }
+  return out;
+}
+
+void BM_CombinatorialFix(benchmark::State& state) {
+  const auto mics = HallMics();
+  const auto stamps = Ch5Emission(Vec3(6.0, 4.0, kHeight_m), 7);
+  methods::acoustic::LosIdentificationOptions options;
+  bool found = false;
+  for (auto _ : state) {
+    auto result = methods::acoustic::IdentifyLos(mics, stamps, kHeight_m, options);
+    found = result.found;
+    benchmark::DoNotOptimize(result);
+  }
+  state.counters["found"] = found ? 1 : 0;
+}
+BENCHMARK(BM_CombinatorialFix)->Unit(benchmark::kMicrosecond);
+
+void BM_RekfUpdate(benchmark::State& state) {
+  // The planar filter's 6 states [x, y, vx, vy, b, iota] and 12 stamp rows at the prediction.
+  const auto mics = HallMics();
+  const Vec3 sender(6.0, 4.0, kHeight_m);
+  const auto stamps = Ch5Emission(sender, 7);
+  const int n = 6;
+  Eigen::MatrixXd P = Eigen::MatrixXd::Identity(n, n) * 0.01;
+  P(4, 4) = 0.02;
+  P(5, 5) = 1e-6;
+  Eigen::MatrixXd H = Eigen::MatrixXd::Zero(12, n);
+  Eigen::VectorXd y(12);
+  for (int i = 0; i < 12; ++i) {
+    const auto p = estimation::PredictToa(sender + Vec3(0.05, -0.03, 0.0), mics[static_cast<std::size_t>(i)], 0.0);
+    H.row(i).head(2) = p->d_sender.head<2>().transpose();
+    H(i, 4) = 1.0;
+    y(i) = stamps[static_cast<std::size_t>(i)].empty() ? 0.0 : stamps[static_cast<std::size_t>(i)].front() - p->predicted_m;
+  }
+  const Eigen::MatrixXd R = 0.103 * 0.103 * Eigen::MatrixXd::Identity(12, 12);
+  const estimation::IrlsOptions options;
+  for (auto _ : state) {
+    auto result = estimation::IrlsUpdate(P, H, y, R, options);
+    benchmark::DoNotOptimize(result);
+  }
+}
+BENCHMARK(BM_RekfUpdate)->Unit(benchmark::kMicrosecond);
+
+void BM_ClosedFormTdoa2d(benchmark::State& state) {
+  const auto mics = HallMics();
+  const Vec3 sender(6.0, 4.0, kHeight_m);
+  const std::array<Vec3, 3> three{mics[0], mics[4], mics[8]};
+  const std::array<double, 3> rho{(sender - three[0]).norm() + 3.0, (sender - three[1]).norm() + 3.0,
+                                  (sender - three[2]).norm() + 3.0};
+  for (auto _ : state) {
+    auto roots = estimation::SolveTdoa2dFromPseudoRanges(three, rho, kHeight_m);
+    benchmark::DoNotOptimize(roots);
+  }
+}
+BENCHMARK(BM_ClosedFormTdoa2d)->Unit(benchmark::kNanosecond);
+
+void BM_ClosedFormToa3d(benchmark::State& state) {
+  const auto mics = HallMics();
+  const Vec3 sender(6.0, 4.0, kHeight_m);
+  const std::vector<Vec3> four{mics[0], mics[2], mics[9], mics[10]};
+  std::vector<double> rho;
+  for (const auto& m : four) rho.push_back((sender - m).norm() + 3.0);
+  for (auto _ : state) {
+    auto roots = estimation::SolveToa3dClosedForm(four, rho);
+    benchmark::DoNotOptimize(roots);
+  }
+}
+BENCHMARK(BM_ClosedFormToa3d)->Unit(benchmark::kNanosecond);
+
+}  // namespace
+}  // namespace mirage::bench
