@@ -15,24 +15,30 @@ namespace mirage::pipeline {
 AcousticSource::AcousticSource(const Experiment& e, int trajectory, int run)
     : experiment_(e),
       trajectory_(e.trajectories[static_cast<std::size_t>(trajectory)]),
-      stamps_rng_(RunRng(e.seed, trajectory, run).Substream("acoustic")) {
+      stamps_rng_(RunRng(e.seed, trajectory, run).Substream("acoustic")),
+      imu_rng_(RunRng(e.seed, trajectory, run).Substream("imu")) {
   const Vec2 offset_m = RunOffset(e.run_grid, run);
   samples_ = geometry::SampleTrajectory(trajectory_.waypoints_m, trajectory_.speed_mps, trajectory_.dt_s, offset_m,
                                         trajectory_.turn_radius_m);
   for (const auto& a : e.anchors) mics_m_.push_back(a.position_m);
   core::Rng offset = RunRng(e.seed, trajectory, run).Substream("emission offset");
   first_emission_s_ = offset.Uniform(0.0, trajectory_.dt_s);
-  if (e.inertial == InertialModel::kImu) {
-    std::vector<double> t_s;
-    std::vector<Vec3> positions_m;
-    for (std::size_t k = 0; k < samples_.size(); ++k) {
-      t_s.push_back(samples_[k].t_s);
-      positions_m.push_back(TruthAt(k));
-    }
-    core::Rng imu_rng = RunRng(e.seed, trajectory, run).Substream("imu");
-    imu_ = channel::SimulateImu(e.imu, t_s, positions_m, imu_rng);
-    for (auto& s : imu_) s.sensor_id = "imu";
+}
+
+// The whole run's IMU samples, made at the first epoch: a source built only for its truth (the
+// runner's bound job) never pays for them.
+void AcousticSource::SimulateImuOnce() {
+  const Experiment& e = experiment_;
+  if (imu_done_ || e.inertial != InertialModel::kImu) return;
+  imu_done_ = true;
+  std::vector<double> t_s;
+  std::vector<Vec3> positions_m;
+  for (std::size_t k = 0; k < samples_.size(); ++k) {
+    t_s.push_back(samples_[k].t_s);
+    positions_m.push_back(TruthAt(k));
   }
+  imu_ = channel::SimulateImu(e.imu, t_s, positions_m, imu_rng_);
+  for (auto& s : imu_) s.sensor_id = "imu";
 }
 
 Vec3 AcousticSource::TruthAt(std::size_t k) const {
@@ -47,6 +53,7 @@ std::optional<std::vector<Vec3>> AcousticSource::TrueStart() const { return std:
 std::optional<SourceStep> AcousticSource::Next() {
   if (next_ >= samples_.size()) return std::nullopt;
   const auto start = std::chrono::steady_clock::now();
+  SimulateImuOnce();
   const std::size_t k = next_++;
   const Experiment& e = experiment_;
   // The walking direction: towards the next sample (the last keeps the previous one's).

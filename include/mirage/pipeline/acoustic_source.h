@@ -42,6 +42,10 @@ class AcousticSource final : public EpochSource {
   std::vector<geometry::TrajectorySample> samples_;
   std::vector<Vec3> mics_m_;
   core::Rng stamps_rng_;
+  void SimulateImuOnce();
+
+  core::Rng imu_rng_;
+  bool imu_done_ = false;
   std::vector<core::ImuSample> imu_;  // InertialModel::kImu: the whole run's samples
   std::size_t next_imu_ = 0;
   double first_emission_s_ = 0.0;  // the sender clock's offset against the receivers' time base
