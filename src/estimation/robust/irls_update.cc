@@ -4,7 +4,9 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <optional>
 #include <span>
+#include <utility>
 
 #include <Eigen/Cholesky>
 
@@ -32,8 +34,9 @@ const core::OptionsDescriptor<IrlsOptions>& IrlsOptionsDescriptor() {
                                              "when no measurement informs a rejected prior direction. 1e-3."});
     d.Boolean(&O::start_at_prior,
               {.key = "start_at_prior",
-               .doc = "Start the reweighting at the prediction (dx = 0) when that gives the rows more total "
-                      "Hampel weight than the unweighted fit, which can absorb agreeing outliers."});
+               .doc = "Reweight from the unweighted fit and from the prediction (dx = 0) and keep the solution "
+                      "that explains more whitened rows within 3 (the fit can absorb agreeing outliers, the "
+                      "prediction can itself be off)."});
     d.Boolean(&O::robust, {.key = "robust",
                            .doc = "false: all weights 1, the plain EKF update (for comparison)."});
     return d;
@@ -65,31 +68,22 @@ std::optional<IrlsResult> IrlsUpdate(const Eigen::MatrixXd& P_hat, const Eigen::
     Y.tail(m) = llt_r.matrixL().solve(innovation);
   }
 
-  IrlsResult result;
-  result.weights = Eigen::VectorXd::Ones(n + m);
   Eigen::MatrixXd A(n, n);
   Eigen::LLT<Eigen::MatrixXd> llt_a(n);
   // Weighted least squares, Eq. (5.25): dx = (N^T W N)^-1 N^T W Y.
-  const auto solve = [&](Eigen::VectorXd& dx) {
-    A.noalias() = N.transpose() * result.weights.asDiagonal() * N;
+  const auto solve = [&](const Eigen::VectorXd& weights, Eigen::VectorXd& dx) {
+    A.noalias() = N.transpose() * weights.asDiagonal() * N;
     llt_a.compute(A);
     if (llt_a.info() != Eigen::Success) return false;
-    dx = llt_a.solve(N.transpose() * result.weights.asDiagonal() * Y);
+    dx = llt_a.solve(N.transpose() * weights.asDiagonal() * Y);
     return true;
   };
-
-  if (!solve(result.dx)) return std::nullopt;
-  if (options.robust && options.start_at_prior) {
-    // Two starts: the unweighted fit, and the prediction (dx = 0). The fit absorbs outliers that
-    // agree with each other into the emission time, the prediction fails when it is itself the
-    // outlier. Start where more whitened rows are consistent (|r| <= 3, the model's own unit
-    // scale, the same for both starts); ties keep the fit.
-    const auto consistent_rows = [&](const Eigen::VectorXd& dx) { return ((Y - N * dx).array().abs() <= 3.0).count(); };
-    const Eigen::VectorXd at_prior = Eigen::VectorXd::Zero(n);
-    if (consistent_rows(at_prior) > consistent_rows(result.dx)) result.dx = at_prior;
-  }
-  result.converged = true;
-  if (options.robust) {
+  // The reweighting (5.30) from dx0 until the step is below the tolerance; the result's P is
+  // (N^T W N)^-1 with the last weights.
+  const auto reweight = [&](const Eigen::VectorXd& dx0) -> std::optional<IrlsResult> {
+    IrlsResult result;
+    result.weights = Eigen::VectorXd::Ones(n + m);
+    result.dx = dx0;
     result.converged = false;
     Eigen::VectorXd residual(n + m);
     Eigen::VectorXd next(n);
@@ -102,7 +96,7 @@ std::optional<IrlsResult> IrlsUpdate(const Eigen::MatrixXd& P_hat, const Eigen::
       for (Eigen::Index j = 0; j < n; ++j) {
         result.weights(j) = std::max(result.weights(j), options.prior_weight_floor);
       }
-      if (!solve(next)) return std::nullopt;
+      if (!solve(result.weights, next)) return std::nullopt;
       const Eigen::VectorXd step = next - result.dx;
       result.dx = next;
       result.iterations = k;
@@ -111,10 +105,47 @@ std::optional<IrlsResult> IrlsUpdate(const Eigen::MatrixXd& P_hat, const Eigen::
         break;
       }
     }
+    result.P = llt_a.solve(Eigen::MatrixXd::Identity(n, n));
+    result.P = 0.5 * (result.P + result.P.transpose()).eval();
+    return result;
+  };
+
+  const Eigen::VectorXd ones = Eigen::VectorXd::Ones(n + m);
+  Eigen::VectorXd fit(n);
+  if (!solve(ones, fit)) return std::nullopt;
+  if (!options.robust) {
+    IrlsResult result;
+    result.weights = ones;
+    result.dx = fit;
+    result.converged = true;
+    result.P = llt_a.solve(Eigen::MatrixXd::Identity(n, n));
+    result.P = 0.5 * (result.P + result.P.transpose()).eval();
+    return result;
   }
-  result.P = llt_a.solve(Eigen::MatrixXd::Identity(n, n));
-  result.P = 0.5 * (result.P + result.P.transpose()).eval();
-  return result;
+  auto best = reweight(fit);
+  if (!best || !options.start_at_prior) return best;
+  // The redescending weights make the objective non-convex: the reweighting from the unweighted
+  // fit (which absorbs outliers that agree with each other, e.g. late stamps pulling the emission
+  // time and the position together) and from the prediction (dx = 0, wrong when the prediction is
+  // itself the outlier) can settle in different minima. Both are run and the one that explains
+  // more rows within 3 of the model's own unit scale (the same for both) is kept; ties go to the
+  // smaller sum of squares of those rows, then to the fit. The second run is skipped when the
+  // first explains every row.
+  const auto consensus = [&](const Eigen::VectorXd& dx) {
+    const Eigen::ArrayXd r = (Y - N * dx).array();
+    const auto inlier = (r.abs() <= 3.0);
+    return std::pair<Eigen::Index, double>(inlier.count(), inlier.select(r.square(), 0.0).sum());
+  };
+  const auto best_consensus = consensus(best->dx);
+  if (best_consensus.first == n + m) return best;
+  auto from_prior = reweight(Eigen::VectorXd::Zero(n));
+  if (!from_prior) return best;
+  const auto prior_consensus = consensus(from_prior->dx);
+  if (prior_consensus.first > best_consensus.first ||
+      (prior_consensus.first == best_consensus.first && prior_consensus.second < best_consensus.second)) {
+    return from_prior;
+  }
+  return best;
 }
 
 }  // namespace mirage::estimation

@@ -9,6 +9,7 @@
 #include "mirage/estimation/meas/toa.h"
 #include "mirage/estimation/robust/hampel.h"
 #include "mirage/estimation/solvers/toa_nlls.h"
+#include "mirage/methods/acoustic/path_association.h"
 
 namespace mirage::methods::acoustic {
 
@@ -46,6 +47,10 @@ AcousticEstimator::AcousticEstimator(const AcousticOptions& options, const World
   if (world_.anchors.size() < 3) throw std::invalid_argument("acoustic: at least 3 microphones are needed");
   c_mps_ = world_.channel.medium.speed_mps;
   height_m_ = world_.agent_height_m.value_or(0.0);
+  const auto& plan = world_.floor_plan;
+  if (options_.echo_order > 0 && !plan.walls().empty() && std::isfinite(plan.ceiling_z_m())) {
+    reflectors_ = geometry::ReflectorsFromPlan(plan);
+  }
 }
 
 Vec3 AcousticEstimator::Position() const {
@@ -176,6 +181,108 @@ std::optional<core::PositionIncrement> AcousticEstimator::Increment(const core::
   return out;
 }
 
+std::vector<AcousticEstimator::Row> AcousticEstimator::AssociateRows(const StampsByReceiver& stamps,
+                                                                      const Eigen::VectorXd& x_lin,
+                                                                      const Eigen::MatrixXd& P_lin, int echo_order) const {
+  const int d = dim();
+  const int n = static_cast<int>(x_lin.size());
+  const Vec3 sender_m = planar() ? Vec3(x_lin(0), x_lin(1), height_m_) : Vec3(x_lin.head<3>());
+  const double r_m2 = options_.range_sigma_m * options_.range_sigma_m;
+  // Per microphone its predicted paths (direct, and echoes to echo_order) and the stamps paired
+  // with them (path_association.h).
+  std::vector<Row> echo_rows;
+  std::vector<ChosenStamp> direct;
+  std::vector<PredictedPath> direct_paths(stamps.size());
+  for (std::size_t i = 0; i < stamps.size(); ++i) {
+    if (stamps[i].empty()) continue;
+    const auto paths = PredictPaths(reflectors_, sender_m, world_.anchors[i].position_m, x_lin(2 * d), echo_order);
+    std::vector<double> predicted_m, s_m2;
+    for (const auto& path : paths) {
+      Eigen::RowVectorXd h = Eigen::RowVectorXd::Zero(n);
+      h.head(d) = path.d_sender.head(d).transpose();
+      h(2 * d) = 1.0;
+      predicted_m.push_back(path.predicted_m);
+      s_m2.push_back((h * P_lin * h.transpose())(0, 0) + r_m2);
+    }
+    for (const auto& pair : AssociatePaths(predicted_m, s_m2, stamps[i], options_.detection_probability,
+                                           options_.clutter_density_per_m)) {
+      const auto& path = paths[static_cast<std::size_t>(pair.path)];
+      const double z_m = stamps[i][static_cast<std::size_t>(pair.stamp)];
+      if (options_.gate_chi2 > 0.0) {
+        const double nu = z_m - path.predicted_m;
+        if (nu * nu > options_.gate_chi2 * s_m2[static_cast<std::size_t>(pair.path)]) continue;
+      }
+      if (path.order == 0) {
+        direct.push_back({static_cast<int>(i), z_m});
+        direct_paths[i] = path;
+      } else {
+        echo_rows.push_back({static_cast<int>(i), z_m, path});
+      }
+    }
+  }
+  if (options_.tdoa_bound_gate) {
+    // The bound holds between direct paths only.
+    direct = ApplyTdoaBound(std::move(direct), world_.anchors, options_.tdoa_bound_sigmas * std::sqrt(2.0) * options_.range_sigma_m);
+  }
+  std::vector<Row> rows;
+  for (const auto& c : direct) rows.push_back({c.receiver, c.z_m, direct_paths[static_cast<std::size_t>(c.receiver)]});
+  rows.insert(rows.end(), echo_rows.begin(), echo_rows.end());
+  return rows;
+}
+
+std::vector<AcousticEstimator::Row> AcousticEstimator::FirstArrivalRows(const StampsByReceiver& stamps,
+                                                                         const Eigen::VectorXd& x_lin) const {
+  const int d = dim();
+  const Vec3 sender_m = planar() ? Vec3(x_lin(0), x_lin(1), height_m_) : Vec3(x_lin.head<3>());
+  std::vector<ChosenStamp> first;
+  for (std::size_t i = 0; i < stamps.size(); ++i) {
+    if (!stamps[i].empty()) first.push_back({static_cast<int>(i), *std::min_element(stamps[i].begin(), stamps[i].end())});
+  }
+  if (options_.tdoa_bound_gate) {
+    first = ApplyTdoaBound(std::move(first), world_.anchors, options_.tdoa_bound_sigmas * std::sqrt(2.0) * options_.range_sigma_m);
+  }
+  std::vector<Row> rows;
+  for (const auto& c : first) {
+    const auto paths = PredictPaths({}, sender_m, world_.anchors[static_cast<std::size_t>(c.receiver)].position_m, x_lin(2 * d), 0);
+    if (!paths.empty()) rows.push_back({c.receiver, c.z_m, paths.front()});
+  }
+  return rows;
+}
+
+std::optional<estimation::IrlsResult> AcousticEstimator::UpdateWithRows(const std::vector<Row>& rows,
+                                                                       const std::optional<core::PositionIncrement>& increment,
+                                                                       const Eigen::VectorXd& x_lin) const {
+  const int d = dim();
+  const int n = static_cast<int>(x_.size());
+  const long m = static_cast<long>(rows.size()) + (increment ? 2 : 0);
+  if (m == 0) return std::nullopt;
+  // The rows z = |path| + b linearised at x_lin, d z / d S = the path's d_sender, d z / d b = 1,
+  // as innovations against the prediction x_: y = z - h(x_lin) + H (x_lin - x_) (iterated EKF).
+  Eigen::MatrixXd H = Eigen::MatrixXd::Zero(m, n);
+  Eigen::VectorXd innovation = Eigen::VectorXd::Zero(m);
+  Eigen::MatrixXd R = Eigen::MatrixXd::Zero(m, m);
+  long r = 0;
+  for (const auto& row : rows) {
+    H.row(r).head(d) = row.path.d_sender.head(d).transpose();
+    H(r, 2 * d) = 1.0;
+    innovation(r) = row.z_m - row.path.predicted_m;
+    R(r, r) = options_.range_sigma_m * options_.range_sigma_m;
+    ++r;
+  }
+  if (increment) {
+    // S_xy - S_prev = delta (Eq. 5.38-5.39 on the clone); linear.
+    H.block(r, 0, 2, 2).setIdentity();
+    H.block(r, clone_offset(), 2, 2) = -Eigen::Matrix2d::Identity();
+    innovation.segment<2>(r) = increment->delta_m - (x_lin.head<2>() - x_lin.segment<2>(clone_offset()));
+    // A floor keeps R positive definite for an increment of zero length and zero covariance.
+    R.block<2, 2>(r, r) = increment->covariance_m2 + 1e-6 * Eigen::Matrix2d::Identity();
+  }
+  innovation += H * (x_lin - x_);
+  estimation::IrlsOptions irls = options_.irls;
+  irls.robust = options_.estimator == "rekf";
+  return estimation::IrlsUpdate(P_, H, innovation, R, irls);
+}
+
 StepOutput AcousticEstimator::Filter(const core::Epoch& epoch) {
   StepOutput out;
   const int d = dim();
@@ -199,74 +306,67 @@ StepOutput AcousticEstimator::Filter(const core::Epoch& epoch) {
     Predict(intervals);
   }
 
-  // Per microphone the stamp nearest the prediction.
   const StampsByReceiver stamps = Stamps(epoch, t_ref_s_);
-  const Vec3 sender_m = Position();
-  std::vector<ChosenStamp> chosen;
-  for (std::size_t i = 0; i < stamps.size(); ++i) {
-    if (stamps[i].empty()) continue;
-    const auto prediction = estimation::PredictToa(sender_m, world_.anchors[i].position_m, x_(2 * d));
-    if (!prediction) continue;
-    double best = stamps[i].front();
-    for (const double z : stamps[i]) {
-      if (std::abs(z - prediction->predicted_m) < std::abs(best - prediction->predicted_m)) best = z;
-    }
-    chosen.push_back({static_cast<int>(i), best});
-  }
-  if (options_.tdoa_bound_gate) {
-    chosen = ApplyTdoaBound(std::move(chosen), world_.anchors, options_.tdoa_bound_sigmas * std::sqrt(2.0) * options_.range_sigma_m);
-  }
-
-  // The rows: z = |S - M_i| + b, d z / d S = u_i, d z / d b = 1.
-  const double r_m2 = options_.range_sigma_m * options_.range_sigma_m;
-  Eigen::MatrixXd H = Eigen::MatrixXd::Zero(static_cast<long>(chosen.size()), n);
-  Eigen::VectorXd innovation(static_cast<long>(chosen.size()));
-  long rows = 0;
-  for (const auto& c : chosen) {
-    const auto prediction =
-        estimation::PredictToa(sender_m, world_.anchors[static_cast<std::size_t>(c.receiver)].position_m, x_(2 * d));
-    if (!prediction) continue;
-    const double nu = c.z_m - prediction->predicted_m;
-    if (options_.gate_chi2 > 0.0) {
-      Eigen::RowVectorXd h = Eigen::RowVectorXd::Zero(n);
-      h.head(d) = prediction->d_sender.head(d).transpose();
-      h(2 * d) = 1.0;
-      const double s_m2 = (h * P_ * h.transpose())(0, 0) + r_m2;
-      if (nu * nu > options_.gate_chi2 * s_m2) continue;
-    }
-    H.row(rows).head(d) = prediction->d_sender.head(d).transpose();
-    H(rows, 2 * d) = 1.0;
-    innovation(rows) = nu;
-    ++rows;
-  }
-  const long stamp_rows = rows;
   const auto increment = have_emission_ ? Increment(epoch) : std::nullopt;
-  const long inertial_rows = increment ? 2 : 0;
-  H.conservativeResize(rows + inertial_rows, n);
-  innovation.conservativeResize(rows + inertial_rows);
-  Eigen::MatrixXd R = Eigen::MatrixXd::Zero(rows + inertial_rows, rows + inertial_rows);
-  R.topLeftCorner(rows, rows).diagonal().setConstant(r_m2);
-  if (increment) {
-    // S_xy - S_prev = delta (Eq. 5.38-5.39 on the clone).
-    H.bottomRows(2).setZero();
-    H.bottomRows(2).leftCols(2).setIdentity();
-    H.bottomRows(2).middleCols(clone_offset(), 2) = -Eigen::Matrix2d::Identity();
-    innovation.tail(2) = increment->delta_m - (x_.head<2>() - x_.segment<2>(clone_offset()));
-    // A floor keeps R positive definite for an increment of zero length and zero covariance.
-    R.bottomRightCorner(2, 2) = increment->covariance_m2 + 1e-6 * Eigen::Matrix2d::Identity();
-    rows += 2;
-  }
-  if (rows > 0) {
-    estimation::IrlsOptions irls = options_.irls;
-    irls.robust = options_.estimator == "rekf";
-    if (const auto update = estimation::IrlsUpdate(P_, H, innovation, R, irls)) {
-      x_ += update->dx;
-      P_ = 0.5 * (update->P + update->P.transpose());
-      // Rows whose weight stayed positive entered the estimate.
-      for (long i = 0; i < stamp_rows; ++i) out.associations += update->weights(n + i) > 0.0 ? 1 : 0;
-    } else {
-      out.rejected_update = true;
+  // Iterated association (an iterated EKF whose data association is redone at each iterate): the
+  // first pass pairs each microphone's earliest stamp with its direct path at the prediction
+  // (the shortest path arrives first); every later pass pairs the stamps with the direct paths and
+  // the echoes at the last pass's estimate, whose covariance makes the gates and the nearest
+  // neighbours sharp. A prediction off by a step of unknown velocity is farther from the truth
+  // than the echoes are from each other; an estimate is not.
+  struct Outcome {
+    std::optional<estimation::IrlsResult> update;
+    long stamp_rows = 0;
+    bool had_rows = false;
+    int explained = 0;  // stamps within 3 sigma of a predicted path at the final estimate
+  };
+  const int passes = reflectors_.empty() ? 1 : 1 + kAssociationPasses;
+  const auto run_passes = [&](bool first_arrival) {
+    Outcome o;
+    Eigen::VectorXd x_lin = x_;
+    Eigen::MatrixXd P_lin = P_;
+    std::vector<std::pair<int, double>> last_pairs;
+    for (int pass = first_arrival ? 0 : 1; pass < passes; ++pass) {
+      const auto rows = pass == 0 && passes > 1 ? FirstArrivalRows(stamps, x_lin)
+                                                : AssociateRows(stamps, x_lin, P_lin, pass == 0 ? 0 : options_.echo_order);
+      o.had_rows = o.had_rows || !rows.empty() || increment.has_value();
+      std::vector<std::pair<int, double>> pairs;
+      for (const auto& row : rows) pairs.emplace_back(row.receiver, row.z_m);
+      if (pass > 1 && pairs == last_pairs) break;  // the association settled: the last update stands
+      last_pairs = pairs;
+      auto candidate = UpdateWithRows(rows, increment, x_lin);
+      if (!candidate) break;
+      o.update = std::move(candidate);
+      o.stamp_rows = static_cast<long>(rows.size());
+      x_lin = x_ + o.update->dx;
+      P_lin = o.update->P;
     }
+    if (o.update && passes > 1) {
+      for (const auto& row : AssociateRows(stamps, x_lin, P_lin, options_.echo_order)) {
+        o.explained += std::abs(row.z_m - row.path.predicted_m) <= 3.0 * options_.range_sigma_m ? 1 : 0;
+      }
+    }
+    return o;
+  };
+  // With echoes the association can lock onto a wrong position that a subset of the earliest
+  // stamps supports (two blocked microphones among six leave 3 unknowns ambiguous). The passes
+  // run a second time from the prediction itself, and the outcome whose estimate explains more
+  // stamps (the likelihood of every stamp, not only the earliest) is kept; ties keep the first.
+  Outcome outcome = run_passes(true);
+  if (passes > 1) {
+    Outcome other = run_passes(false);
+    if (other.update && (!outcome.update || other.explained > outcome.explained)) outcome = std::move(other);
+  }
+  const auto& update = outcome.update;
+  const long stamp_rows = outcome.stamp_rows;
+  const bool had_rows = outcome.had_rows;
+  if (update) {
+    x_ += update->dx;
+    P_ = 0.5 * (update->P + update->P.transpose());
+    // Rows whose weight stayed positive entered the estimate.
+    for (long i = 0; i < stamp_rows; ++i) out.associations += update->weights(n + i) > 0.0 ? 1 : 0;
+  } else if (had_rows) {
+    out.rejected_update = true;
   }
   out.expected = static_cast<int>(world_.anchors.size());
   out.agents.push_back(Estimate());
@@ -331,8 +431,41 @@ StepOutput AcousticEstimator::Snapshot(const core::Epoch& epoch) {
   return out;
 }
 
+StepOutput AcousticEstimator::Combinatorial(const core::Epoch& epoch) {
+  StepOutput out;
+  out.expected = static_cast<int>(world_.anchors.size());
+  LosIdentificationOptions los = options_.los;
+  los.range_sigma_m = options_.range_sigma_m;
+  los.tdoa_bound = options_.tdoa_bound_gate;
+  los.tdoa_bound_sigmas = options_.tdoa_bound_sigmas;
+  std::vector<Vec3> mics;
+  for (const auto& anchor : world_.anchors) mics.push_back(anchor.position_m);
+  const auto fix = IdentifyLos(mics, Stamps(epoch, epoch.t_s), height_m_, los);
+  // A fix outside the floor plan's bounds is no fix: the sender is in the room (a far mirror
+  // root can gather votes when the voters' rows are nearly parallel).
+  bool inside = true;
+  if (!world_.floor_plan.walls().empty()) {
+    const auto [lo, hi] = world_.floor_plan.Bounds();
+    const Vec2 p = fix.position_m.head<2>();
+    inside = (p.array() >= lo.array()).all() && (p.array() <= hi.array()).all();
+  }
+  if (!fix.found || !inside) {
+    out.agents.push_back(last_);  // no fix: the last one stands, the epoch counts as a failure
+    out.fixed = false;
+    return out;
+  }
+  out.associations = static_cast<int>(fix.los_receivers.size());
+  AgentEstimate estimate;
+  estimate.position_m = fix.position_m;
+  estimate.covariance_m2.topLeftCorner<2, 2>() = fix.covariance_m2.topLeftCorner<2, 2>();
+  out.agents.push_back(estimate);
+  return out;
+}
+
 StepOutput AcousticEstimator::Process(const core::Epoch& epoch) {
-  StepOutput out = options_.estimator == "nlls" ? Snapshot(epoch) : Filter(epoch);
+  StepOutput out = options_.estimator == "nlls"            ? Snapshot(epoch)
+                   : options_.estimator == "combinatorial" ? Combinatorial(epoch)
+                                                           : Filter(epoch);
   last_ = out.agents.front();
   return out;
 }

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "mirage/methods/acoustic/acoustic_options.h"
 
+#include <algorithm>
+
 #include "mirage/core/derived_defaults.h"
 
 namespace mirage::methods::acoustic {
@@ -14,8 +16,9 @@ const core::OptionsDescriptor<AcousticOptions>& AcousticOptionsDescriptor() {
              {.key = "estimator",
               .doc = "rekf: the robust EKF, Hampel-weighted reweighting of the prior and the stamps (Bordoy 2020 Eq. "
                      "5.24-5.30); ekf: the same filter with every weight 1; nlls: a Levenberg-Marquardt fix per "
-                     "emission from random starts with every microphone's stamp."},
-             {"rekf", "ekf", "nlls"});
+                     "emission from random starts with every microphone's stamp; combinatorial: the 8-step LOS identification "
+                     "per emission (Sec. 5.1), planar mode only."},
+             {"rekf", "ekf", "nlls", "combinatorial"});
     d.Choice(&O::mode,
              {.key = "mode",
               .doc = "planar: x, y at the world's known sender height (ch. 5, errors in 2-D); 3d: the height too."},
@@ -52,6 +55,32 @@ const core::OptionsDescriptor<AcousticOptions>& AcousticOptionsDescriptor() {
                                      .range = ValueRange::AtLeast(0.0),
                                      .doc = "Noise margin of the TDOA bound in stamp sigmas (times sqrt 2 for the "
                                             "difference). 3."});
+    d.Integer(&O::echo_order,
+              {.key = "echo_order",
+               .range = ValueRange::Closed(0.0, 2.0),
+               .doc = "Highest order of the floor plan's reflections (walls, floor, ceiling) whose paths the filters "
+                      "predict per microphone: a stamp may be the direct path or an echo, a virtual receiver. 0: direct "
+                      "paths only (the thesis). Ignored without a floor plan with a ceiling. 1."});
+    d.Number(&O::detection_probability,
+             {.key = "detection_probability",
+              .range = ValueRange::LeftOpen(0.0, 1.0),
+              .doc = "Probability that a predicted path's stamp is detected; with clutter_density_per_m it sets the "
+                     "association's likelihood-ratio gate. 0.9; derived: the scenario's detection probability.",
+              .derived = core::DerivedDefault{
+                  .formula = "detection_probability",
+                  .needs = {core::PhysicalKey::kDetectionProbability},
+                  .compute = [](const core::PhysicalKeys& k) { return std::max(*k.detection_probability, 1e-3); }}});
+    d.Number(&O::clutter_density_per_m,
+             {.key = "clutter_density_per_m",
+              .unit = "1/m",
+              .range = ValueRange::AtLeast(0.0),
+              .doc = "Stamps no predicted path explains (false alarms, higher-order echoes) per metre of c T and "
+                     "microphone; 0: every path takes its nearest stamp, no gate (the thesis). Derived: the "
+                     "scenario's false-alarm rate over a 40 m listening window.",
+              .derived = core::DerivedDefault{
+                  .formula = "clutter_rate / 40 m",
+                  .needs = {core::PhysicalKey::kClutterRate},
+                  .compute = [](const core::PhysicalKeys& k) { return *k.clutter_rate / 40.0; }}});
     d.Number(&O::gate_chi2, {.key = "gate_chi2",
                              .range = ValueRange::AtLeast(0.0),
                              .doc = "Chi-square gate on one stamp's innovation (1 degree of freedom); 0 = off, as in "
@@ -68,6 +97,11 @@ const core::OptionsDescriptor<AcousticOptions>& AcousticOptionsDescriptor() {
                                               .doc = "Velocity standard deviation at the start. 1 m/s; derived: the "
                                                      "walker's speed in an unknown direction.",
                                               .derived = core::SpeedTimes(1.0)});
+    d.Section(&O::los,
+              {.key = "los",
+               .doc = "The combinatorial estimator's switches; its stamp sigma and TDOA bound are the method's "
+                      "range_sigma_m, tdoa_bound_gate and tdoa_bound_sigmas."},
+              LosIdentificationSectionDescriptor());
     d.Integer(&O::nlls_starts, {.key = "nlls_starts",
                                 .range = ValueRange::Closed(1.0, 1000.0),
                                 .doc = "Random starts of the snapshot NLLS per emission. 10."});
@@ -84,6 +118,13 @@ const core::OptionsDescriptor<AcousticOptions>& AcousticOptionsDescriptor() {
   return descriptor;
 }
 
-std::vector<std::string> Validate(const AcousticOptions& options) { return AcousticOptionsDescriptor().Validate(options); }
+std::vector<std::string> Validate(const AcousticOptions& options) {
+  auto problems = AcousticOptionsDescriptor().Validate(options);
+  if (options.estimator == "combinatorial" && options.mode != "planar") {
+    problems.push_back("estimator: combinatorial needs mode planar (the closed form of Sec. 5.1 step 2 takes the "
+                       "sender's height as known), got mode " + options.mode);
+  }
+  return problems;
+}
 
 }  // namespace mirage::methods::acoustic

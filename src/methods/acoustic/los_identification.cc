@@ -73,58 +73,69 @@ struct Best {
   std::vector<int> slot;  // per receiver: the chosen stamp slot (0..k-1), or -1
 };
 
-}  // namespace
-
-const core::OptionsDescriptor<LosIdentificationOptions>& LosIdentificationOptionsDescriptor() {
+// The descriptor; without the keys a host method shares (the stamp sigma and the TDOA bound),
+// which it copies into the options itself.
+core::OptionsDescriptor<LosIdentificationOptions> MakeDescriptor(bool with_shared_keys) {
   using core::ValueRange;
   using O = LosIdentificationOptions;
-  static const auto descriptor = [] {
-    core::OptionsDescriptor<O> d("methods::acoustic::LosIdentificationOptions");
+  core::OptionsDescriptor<O> d("methods::acoustic::LosIdentificationOptions");
+  if (with_shared_keys) {
     d.Number(&O::range_sigma_m, {.key = "range_sigma_m",
                                  .unit = "m",
                                  .range = ValueRange::Above(0.0),
                                  .doc = "Standard deviation of one stamp as a distance. 0.103 m = 0.3 ms at 343 m/s, "
                                         "the ch. 5 synthetic regime."});
-    d.Integer(&O::max_stamps_per_receiver,
-              {.key = "max_stamps_per_receiver",
-               .range = ValueRange::Closed(1.0, 16.0),
-               .doc = "K: the K earliest stamps of each receiver enter the combinations (C(N,3) K^3 closed forms). "
-                      "2: the direct path and one echo."});
     d.Boolean(&O::tdoa_bound, {.key = "tdoa_bound",
                                .doc = "Skip stamp choices that break the TDOA bound (Eq. 5.5); saves closed-form "
                                       "solves, never changes the fix."});
     d.Number(&O::tdoa_bound_sigmas, {.key = "tdoa_bound_sigmas",
                                      .range = ValueRange::AtLeast(0.0),
                                      .doc = "Margin of the TDOA bound in sigmas of a stamp difference. 3."});
-    d.Boolean(&O::causality_test, {.key = "causality_test",
-                                   .doc = "Reject fixes before whose direct path some stamp arrives (Eq. 5.4): "
-                                          "virtual senders."});
-    d.Number(&O::causality_sigmas, {.key = "causality_sigmas",
-                                    .range = ValueRange::AtLeast(0.0),
-                                    .doc = "Margin of the causality test in stamp sigmas. 3."});
-    d.Boolean(&O::cook_voting, {.key = "cook_voting",
-                                .doc = "Vote by Cook's distance of the 4-row problem (Sec. 5.1 steps 4-7); false: by "
-                                       "a residual window of window_sigmas."});
-    d.Number(&O::cook_probability, {.key = "cook_probability",
-                                    .range = ValueRange::Open(0.0, 1.0),
-                                    .doc = "Probability of the F quantile used as Cook's threshold. 0.5: the usual "
-                                           "rule of thumb D > F_0.5(p', m - p')."});
-    d.Number(&O::window_sigmas, {.key = "window_sigmas",
-                                 .range = ValueRange::Above(0.0),
-                                 .doc = "Half-width of the residual window of the plain vote, in stamp sigmas. 3."});
-    d.Integer(&O::min_votes, {.key = "min_votes",
-                              .range = ValueRange::AtLeast(0.0),
-                              .doc = "Fewest voters beyond the triplet for a fix. 1: a triplet alone is verified by "
-                                     "nothing."});
-    d.Integer(&O::max_triplets, {.key = "max_triplets",
-                                 .range = ValueRange::AtLeast(0.0),
-                                 .doc = "Most receiver triplets enumerated, those of the earliest receivers first; "
-                                        "0: all."});
-    d.Integer(&O::max_refine_iterations, {.key = "max_refine_iterations",
-                                          .range = ValueRange::AtLeast(1.0),
-                                          .doc = "Iteration limit of the final Levenberg-Marquardt refinement. 50."});
-    return d;
-  }();
+  }
+  d.Integer(&O::max_stamps_per_receiver,
+            {.key = "max_stamps_per_receiver",
+             .range = ValueRange::Closed(1.0, 16.0),
+             .doc = "K: the K earliest stamps of each receiver enter the combinations (C(N,3) K^3 closed forms). "
+                    "2: the direct path and one echo."});
+  d.Boolean(&O::causality_test, {.key = "causality_test",
+                                 .doc = "Reject fixes before whose direct path some stamp arrives (Eq. 5.4): "
+                                        "virtual senders."});
+  d.Number(&O::causality_sigmas, {.key = "causality_sigmas",
+                                  .range = ValueRange::AtLeast(0.0),
+                                  .doc = "Margin of the causality test in stamp sigmas. 3."});
+  d.Boolean(&O::cook_voting, {.key = "cook_voting",
+                              .doc = "Vote by Cook's distance of the 4-row problem (Sec. 5.1 steps 4-7); false: by "
+                                     "a residual window of window_sigmas."});
+  d.Number(&O::cook_probability, {.key = "cook_probability",
+                                  .range = ValueRange::Open(0.0, 1.0),
+                                  .doc = "Probability of the F quantile used as Cook's threshold. 0.5: the usual "
+                                         "rule of thumb D > F_0.5(p', m - p')."});
+  d.Number(&O::window_sigmas, {.key = "window_sigmas",
+                               .range = ValueRange::Above(0.0),
+                               .doc = "Half-width of the residual window of the plain vote, in stamp sigmas. 3."});
+  d.Integer(&O::min_votes, {.key = "min_votes",
+                            .range = ValueRange::AtLeast(0.0),
+                            .doc = "Fewest voters beyond the triplet for a fix. 1: a triplet alone is verified by "
+                                   "nothing."});
+  d.Integer(&O::max_triplets, {.key = "max_triplets",
+                               .range = ValueRange::AtLeast(0.0),
+                               .doc = "Most receiver triplets enumerated, those of the earliest receivers first; "
+                                      "0: all."});
+  d.Integer(&O::max_refine_iterations, {.key = "max_refine_iterations",
+                                        .range = ValueRange::AtLeast(1.0),
+                                        .doc = "Iteration limit of the final Levenberg-Marquardt refinement. 50."});
+  return d;
+}
+
+}  // namespace
+
+const core::OptionsDescriptor<LosIdentificationOptions>& LosIdentificationOptionsDescriptor() {
+  static const auto descriptor = MakeDescriptor(true);
+  return descriptor;
+}
+
+const core::OptionsDescriptor<LosIdentificationOptions>& LosIdentificationSectionDescriptor() {
+  static const auto descriptor = MakeDescriptor(false);
   return descriptor;
 }
 

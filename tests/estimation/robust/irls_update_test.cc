@@ -207,6 +207,28 @@ TEST(IrlsUpdate, KeepsTheCovarianceFiniteWhenEveryPriorRowOfAnUnobservedStateIsR
   EXPECT_NEAR(result->dx(0), 18.0, 1e-3);  // the prior's regression of state 0 on state 1
 }
 
+TEST(IrlsUpdate, KeepsTheSolutionThatExplainsMoreRows) {
+  // One state: the prediction 0 (sigma 0.3, a step of unknown velocity), four rows at 0.3 and two
+  // at 0 (sigma 0.03). At the prediction the prior row and the two agree (3 rows within 3); at the
+  // unweighted fit (~0.2) only the prior row does, so a start chosen before reweighting takes the
+  // prediction and rejects the four. Reweighted from the fit the solution settles at 0.3, where 5
+  // rows are within 3: that one is kept.
+  const Eigen::MatrixXd P = Eigen::MatrixXd::Constant(1, 1, 0.09);
+  const Eigen::MatrixXd H = Eigen::MatrixXd::Ones(6, 1);
+  Eigen::VectorXd y(6);
+  y << 0.3, 0.3, 0.3, 0.3, 0.0, 0.0;
+  const Eigen::MatrixXd R = 0.03 * 0.03 * Eigen::MatrixXd::Identity(6, 6);
+  const auto robust = IrlsUpdate(P, H, y, R, IrlsOptions{});
+  ASSERT_TRUE(robust.has_value());
+  EXPECT_NEAR(robust->dx(0), 0.3, 0.01);
+  EXPECT_LT(robust->weights(5), 0.01);  // the two rows at 0 are the outliers
+  // The mirror case: two rows at 0.3 and four at 0 settle at the prediction.
+  y << 0.3, 0.3, 0.0, 0.0, 0.0, 0.0;
+  const auto prior = IrlsUpdate(P, H, y, R, IrlsOptions{});
+  ASSERT_TRUE(prior.has_value());
+  EXPECT_NEAR(prior->dx(0), 0.0, 0.01);
+}
+
 TEST(IrlsUpdate, RefusesACovarianceThatIsNotPositiveDefinite) {
   const Eigen::MatrixXd H = Eigen::MatrixXd::Identity(2, 2);
   const Eigen::VectorXd y = Eigen::VectorXd::Ones(2);

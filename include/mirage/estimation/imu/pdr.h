@@ -135,11 +135,10 @@ class PdrIntegrator {
   double t_from_s_ = 0.0;
   int steps_ = 0;
   int total_steps_ = 0;
-  // Step detector: the last two norms and the previous sample's time.
+  // Step detector: the last two norms.
   int norms_seen_ = 0;
   double norm_prev2_ = 0.0;
   double norm_prev_ = 0.0;
-  double t_prev_s_ = 0.0;
   std::optional<double> t_last_step_s_;
   std::optional<double> step_period_s_;
   // Fraction of the step in progress already credited to earlier increments.

@@ -9,8 +9,9 @@
 //    and L_R^-1 (y - H dx) with y = z - h(x_hat). This is (5.27)-(5.28) with x_hat subtracted
 //    (z_tilde - H x = y - H dx), and avoids differencing the large numbers x_hat and H x_hat.
 //  - V is blkdiag(L_P, L_R), the Cholesky factors of P_hat and R, each factored once per update.
-//  - Iteration 0 is the plain least-squares solution (all weights 1, i.e. the EKF), not the prior:
-//    starting at dx = 0 would leave a wrong prior with zero residuals and reject the measurements.
+//  - Iteration 0 is the plain least-squares solution (all weights 1, i.e. the EKF), and, with
+//    start_at_prior, also the prior (dx = 0); the converged solution with the larger consensus is
+//    kept (see IrlsOptions::start_at_prior).
 //  - The scale a = 1.4826 MAD / theta is re-estimated at every iteration from all n + m whitened
 //    residuals and floored at HampelOptions::min_a.
 //  - Prior-row weights are floored at prior_weight_floor > 0, so N^T W N stays positive definite
@@ -48,11 +49,12 @@ struct IrlsOptions {
   /// Smallest weight of a prior row, in (0, 1]. 1e-3 inflates a rejected prior direction's standard
   /// deviation by at most ~32 and keeps N^T W N invertible when no measurement informs it.
   double prior_weight_floor = 1e-3;
-  /// The reweighting may start at the prediction (dx = 0) instead of the unweighted least-squares
-  /// fit, whichever gives the rows more total Hampel weight: outliers that agree with each other
-  /// (late stamps pulling the emission time and the position together) hide in small residuals
-  /// of the fit but not at the prediction, while a prediction that is itself off loses to the fit.
-  /// Eq. 5.30 evaluates w at x^{k-1} and leaves x^0 open.
+  /// Reweight from two starts, the unweighted least-squares fit and the prediction (dx = 0), and
+  /// keep the solution that explains more whitened rows within 3 (ties: the smaller sum of their
+  /// squares): outliers that agree with each other (late stamps pulling the emission time and the
+  /// position together) hide in small residuals of the fit, while a prediction that is itself off
+  /// (an unknown velocity after one step) loses to the fit. Eq. 5.30 evaluates w at x^{k-1} and
+  /// leaves x^0 open. The second start is skipped when the first solution explains every row.
   bool start_at_prior = true;
   /// false: all weights stay 1 and the result is the plain EKF update (for comparison).
   bool robust = true;

@@ -14,7 +14,8 @@
 // from the emission time the stamps imply, so that a missed emission does not shift the count);
 // b gains n iota plus the jitter. Measurement (Eq. 5.1 without the bias): per microphone the
 // stamp nearest the prediction, z = c (T - t_ref) = |S - M_i| + b; the stamps that break the
-// TDOA bound (Eq. 5.5) against most others are left out first. Update: IRLS with Hampel weights
+// TDOA bound (Eq. 5.5) against most others are left out first. With echoes (below) the update is
+// iterated instead, the association redone at each iterate. Update: IRLS with Hampel weights
 // over the whitened prior and stamp rows (Eq. 5.25-5.30, estimation/robust/irls_update.h); the
 // plain EKF is the same update with every weight 1.
 //
@@ -23,6 +24,18 @@
 // S_xy - S_prev = delta with the increment's covariance, stacked with the stamps (Eq. 5.35-5.39
 // use an IMU position; an increment on a clone needs no common frame origin and drifts only
 // within one interval). Its rows are reweighted like the others.
+//
+// Combinatorial ("combinatorial"): per emission the 8-step LOS identification of Sec. 5.1
+// (los_identification.h) on every stamp, no motion model; an emission without a voted fix has
+// no fix.
+//
+// Echoes (options.echo_order > 0, with a floor plan): the filters predict the echoes off the
+// plan's walls, floor and ceiling too, and pair each microphone's stamps with its paths
+// (path_association.h); an echo is a row of its virtual receiver. The update is an iterated EKF
+// with the association redone at each iterate: pass 0 takes each microphone's earliest stamp as
+// its direct path at the prediction, passes 1-3 pair all stamps with all paths at the last
+// estimate. The passes run twice, after pass 0 and directly from the prediction, and the outcome
+// whose estimate explains more stamps within 3 sigma is kept (docs/methods/acoustic.md).
 //
 // Snapshot ("nlls"): per emission a Levenberg-Marquardt fix of [S, b] from random starts, with
 // each microphone's earliest stamp that passes the TDOA bound, no motion model (the thesis's
@@ -35,8 +48,11 @@
 #include <Eigen/Core>
 
 #include "mirage/core/rng.h"
+#include "mirage/geometry/reflector_3d.h"
 #include "mirage/estimation/imu/pdr.h"
+#include "mirage/estimation/robust/irls_update.h"
 #include "mirage/methods/acoustic/acoustic_options.h"
+#include "mirage/methods/acoustic/path_association.h"
 #include "mirage/methods/estimator.h"
 #include "mirage/methods/world.h"
 
@@ -80,8 +96,27 @@ class AcousticEstimator final : public Estimator {
   [[nodiscard]] std::optional<double> ImpliedEmission(const core::Epoch& epoch, const Vec3& position_m) const;
   void Start(const Vec3& position_m, double position_sigma_m);
   void Predict(int intervals);
+  /// One stamp paired with a predicted path of its microphone.
+  struct Row {
+    int receiver = 0;
+    double z_m = 0.0;
+    PredictedPath path;
+  };
+  /// Association passes after the first (direct paths at the prediction) when echoes are
+  /// predicted; a pass whose pairs equal the last one's ends the iteration early.
+  static constexpr int kAssociationPasses = 3;
+  /// The rows of one association pass at the linearisation point x_lin with covariance P_lin.
+  [[nodiscard]] std::vector<Row> AssociateRows(const StampsByReceiver& stamps, const Eigen::VectorXd& x_lin,
+                                               const Eigen::MatrixXd& P_lin, int echo_order) const;
+  /// Each microphone's earliest stamp as its direct path (the shortest path arrives first), at x_lin.
+  [[nodiscard]] std::vector<Row> FirstArrivalRows(const StampsByReceiver& stamps, const Eigen::VectorXd& x_lin) const;
+  /// The REKF/EKF update of the prediction (x_, P_) with the rows linearised at x_lin.
+  [[nodiscard]] std::optional<estimation::IrlsResult> UpdateWithRows(const std::vector<Row>& rows,
+                                                                     const std::optional<core::PositionIncrement>& increment,
+                                                                     const Eigen::VectorXd& x_lin) const;
   StepOutput Filter(const core::Epoch& epoch);
   StepOutput Snapshot(const core::Epoch& epoch);
+  StepOutput Combinatorial(const core::Epoch& epoch);
   [[nodiscard]] AgentEstimate Estimate() const;
 
   /// The inertial rows of this epoch: the increment since the last emission, if any.
@@ -92,6 +127,7 @@ class AcousticEstimator final : public Estimator {
   std::optional<estimation::PdrIntegrator> pdr_;  // started once the heading is known
   bool pdr_started_ = false;
   World world_;
+  std::vector<geometry::Reflector3> reflectors_;  // walls, floor, ceiling: the echoes' surfaces
   double c_mps_ = 343.0;
   double height_m_ = 0.0;
   Eigen::VectorXd x_;

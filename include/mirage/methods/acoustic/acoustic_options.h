@@ -11,6 +11,7 @@
 #include "mirage/estimation/imu/pdr.h"
 #include "mirage/estimation/motion/constant_velocity.h"
 #include "mirage/estimation/robust/irls_update.h"
+#include "mirage/methods/acoustic/los_identification.h"
 
 namespace mirage::methods::acoustic {
 
@@ -42,6 +43,20 @@ struct AcousticOptions {
   bool tdoa_bound_gate = true;
   /// Noise margin of the TDOA bound in stamp sigmas, >= 0. 3.
   double tdoa_bound_sigmas = 3.0;
+  /// Highest order of the reflections (walls, floor, ceiling of the world's floor plan) whose
+  /// paths the filters predict per microphone, in [0, 2]. 1: every stamp may be the direct path or
+  /// a first-order echo, a virtual receiver mirrored in one surface, so that an emission whose
+  /// direct paths the body blocks still informs the filter. 0: direct paths only (the thesis).
+  /// Ignored without a floor plan with a ceiling.
+  int echo_order = 1;
+  /// Probability that a predicted path's stamp is detected, in (0, 1]. With clutter_density_per_m
+  /// it sets the association's likelihood-ratio gate (see the estimator). 0.9; derived: the
+  /// scenario's detection probability.
+  double detection_probability = 0.9;
+  /// Density of stamps that no predicted path explains (false alarms, higher-order echoes) per
+  /// metre of c T and microphone, >= 0; 0: every path takes its nearest stamp (no gate, the
+  /// thesis). Derived: the scenario's false-alarm rate over a 40 m listening window.
+  double clutter_density_per_m = 0.0;
   /// Chi-square gate on one stamp's innovation (1 degree of freedom), >= 0; 0 = off (the thesis's
   /// EKF and REKF have none: the REKF's weights do the rejecting).
   double gate_chi2 = 0.0;
@@ -52,6 +67,9 @@ struct AcousticOptions {
   double initial_position_sigma_m = 0.5;
   /// Velocity standard deviation at the start (m/s), > 0. 1 m/s; derived: the walker's speed.
   double initial_velocity_sigma_mps = 1.0;
+  /// The combinatorial estimator's switches (its stamp sigma, TDOA bound and margin are the
+  /// method's range_sigma_m, tdoa_bound_gate and tdoa_bound_sigmas).
+  LosIdentificationOptions los;
   /// Random starts of the snapshot NLLS, >= 1. 10.
   int nlls_starts = 10;
   /// Fuse the phone's dead reckoning (loose coupling, Eq. 5.35-5.39): position increments between

@@ -103,6 +103,10 @@ struct LosIdentificationOptions {
 /// The options' descriptor (keys, units, ranges, docs; core/options_descriptor.h).
 const core::OptionsDescriptor<LosIdentificationOptions>& LosIdentificationOptionsDescriptor();
 
+/// The descriptor without range_sigma_m, tdoa_bound and tdoa_bound_sigmas: a section of a method
+/// that has those keys itself and copies them in (methods::acoustic "los").
+const core::OptionsDescriptor<LosIdentificationOptions>& LosIdentificationSectionDescriptor();
+
 /// Problems with the options ("key: message"), empty if valid; see the descriptor.
 std::vector<std::string> Validate(const LosIdentificationOptions& options);
 
