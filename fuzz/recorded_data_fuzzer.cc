@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: MIT
-// libFuzzer target for the recorded-data readers (anchors.csv, ranges.csv, truth.csv): the input
-// is the three files' texts separated by NUL bytes; each must parse or be rejected with
-// io::InputError. A crash, a sanitizer report, a hang or any other exception is a bug. A parsed
-// recording is also walked (every step, range and truth lookup), as the trackers would.
+// libFuzzer target for the recorded-data readers (anchors.csv, ranges.csv, truth.csv, mics.csv,
+// toa.csv): the input is the five files' texts separated by NUL bytes (missing ones are empty);
+// each must parse or be rejected with io::InputError. A crash, a sanitizer report, a hang or any
+// other exception is a bug. A parsed recording is also walked (every step, range, stamp and truth
+// lookup), as the estimators would.
 // Build and run: make fuzz.
 #include <cstdint>
 #include <string_view>
@@ -10,25 +11,21 @@
 #include "mirage/io/input_error.h"
 #include "mirage/io/recorded_data.h"
 
-extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  std::string_view input(reinterpret_cast<const char*>(data), size);
-  std::string_view parts[3];
-  for (auto& part : parts) {
-    const std::size_t nul = input.find('\0');
-    part = input.substr(0, nul);
-    input = nul == std::string_view::npos ? std::string_view() : input.substr(nul + 1);
-  }
+namespace {
+
+// Ranges: anchors, ranges, optional truth.
+double WalkRanges(std::string_view anchors, std::string_view ranges, std::string_view truth) {
   mirage::pipeline::Recording recording;
   try {
-    mirage::io::ParseAnchorsCsv(parts[0], "anchors.csv", recording);
-    mirage::io::ParseRangesCsv(parts[1], "ranges.csv", recording);
-    if (!parts[2].empty()) mirage::io::ParseTruthCsv(parts[2], "truth.csv", recording);
+    mirage::io::ParseAnchorsCsv(anchors, "anchors.csv", recording);
+    mirage::io::ParseRangesCsv(ranges, "ranges.csv", recording);
+    if (!truth.empty()) mirage::io::ParseTruthCsv(truth, "truth.csv", recording);
   } catch (const mirage::io::InputError&) {
-    return 0;
+    return 0.0;
   }
   double sum = 0.0;
   for (const auto& step : recording.steps) {
-    if (step.anchors.size() != recording.anchor_ids.size()) __builtin_trap();
+    if (step.anchors.size() != recording.anchor_ids.size() || !step.toas.empty()) __builtin_trap();
     for (const auto& anchor : step.anchors) {
       for (const auto& r : anchor.ranges) {
         if (!(r.range_m >= 0.0)) __builtin_trap();  // the reader must have rejected it
@@ -37,5 +34,47 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     }
     if (const auto p = recording.TruthAt(step.t_s)) sum += p->x();
   }
+  return sum;
+}
+
+// Acoustic stamps: mics, toa, optional truth.
+double WalkStamps(std::string_view mics, std::string_view toa, std::string_view truth) {
+  mirage::pipeline::Recording recording;
+  try {
+    mirage::io::ParseMicsCsv(mics, "mics.csv", recording);
+    mirage::io::ParseToaCsv(toa, "toa.csv", recording);
+    if (!truth.empty()) mirage::io::ParseTruthCsv(truth, "truth.csv", recording);
+  } catch (const mirage::io::InputError&) {
+    return 0.0;
+  }
+  double sum = 0.0;
+  double previous_s = -1e308;
+  for (const auto& step : recording.steps) {
+    if (step.toas.size() != recording.anchor_ids.size() || !step.anchors.empty() || !(step.t_s > previous_s)) {
+      __builtin_trap();
+    }
+    previous_s = step.t_s;
+    for (std::size_t m = 0; m < step.toas.size(); ++m) {
+      const auto& record = step.toas[m];
+      if (record.receiver_index != static_cast<int>(m) || record.t_s != step.t_s) __builtin_trap();
+      for (const double toa_s : record.toa_s) sum += toa_s;  // finite: the reader rejects the rest
+    }
+    if (const auto p = recording.TruthAt(step.t_s)) sum += p->z();
+  }
+  return sum;
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  std::string_view input(reinterpret_cast<const char*>(data), size);
+  std::string_view parts[5];
+  for (auto& part : parts) {
+    const std::size_t nul = input.find('\0');
+    part = input.substr(0, nul);
+    input = nul == std::string_view::npos ? std::string_view() : input.substr(nul + 1);
+  }
+  double sum = WalkRanges(parts[0], parts[1], parts[2]);
+  if (!parts[3].empty()) sum += WalkStamps(parts[3], parts[4], parts[2]);
   return sum == -1.0 ? 1 : 0;
 }

@@ -1,14 +1,37 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: MIT
-"""Seeds for fuzz/recorded_data_fuzzer.cc from a recording directory: the fuzzer's input is
-anchors.csv, ranges.csv and truth.csv joined by NUL bytes. Writes the recording cut short, without
-truth, and with one bad row of each kind the readers reject.
-Usage: recorded_fuzz_seeds.py RECORDING_DIR OUT_DIR"""
+"""Seeds for fuzz/recorded_data_fuzzer.cc from a range recording directory and, optionally, an
+acoustic one: the fuzzer's input is anchors.csv, ranges.csv, truth.csv, mics.csv and toa.csv joined
+by NUL bytes. Writes the recordings cut short, without truth, and with one bad row of each kind
+the readers reject.
+Usage: recorded_fuzz_seeds.py RECORDING_DIR OUT_DIR [ACOUSTIC_RECORDING_DIR]"""
 import pathlib
 import sys
 
 
-def main(src, out):
+def head(path, n):
+    return "".join(path.read_text().splitlines(keepends=True)[:n])
+
+
+def acoustic_seeds(src):
+    """Seeds of the stamp readers: no anchors or ranges, the acoustic truth, mics, toa."""
+    mics = (src / "mics.csv").read_text()
+    toa = head(src / "toa.csv", 80)
+    truth = head(src / "truth.csv", 6)
+    last_t = toa.splitlines()[-1].split(",")[0]
+    return {
+        "stamps_full": ("", "", truth, mics, toa),
+        "stamps_no_truth": ("", "", "", mics, toa),
+        "stamps_missing_z": ("", "", truth, "receiver_id,x_m,y_m\nM1,0.6,0.6\n", toa),
+        "stamps_duplicate_mic": ("", "", truth, mics + "M1,1,1,3\n", toa),
+        "stamps_unknown_mic": ("", "", truth, mics, toa + f"{last_t},ZZ,1.0\n"),
+        "stamps_backwards": ("", "", truth, mics, toa + "0,M1,1.0\n"),
+        "stamps_text": ("", "", truth, mics, toa + f"{last_t},M1,0.5s\n"),
+        "stamps_nan": ("", "", truth, mics, toa + f"{last_t},M1,nan\n"),
+    }
+
+
+def main(src, out, acoustic=None):
     src, out = pathlib.Path(src), pathlib.Path(out)
     out.mkdir(parents=True, exist_ok=True)
     anchors = (src / "anchors.csv").read_text()
@@ -24,11 +47,13 @@ def main(src, out):
         "nan": (anchors, ranges + "9,A1,nan,0.1\n", truth),
         "z_column": ("anchor_id,x_m,y_m,z_m\nA1,0.5,7,2.5\nA2,5.2,2.3,2.5\n", ranges, truth),
     }
+    if acoustic is not None:
+        seeds.update(acoustic_seeds(pathlib.Path(acoustic)))
     for name, parts in seeds.items():
         (out / name).write_bytes("\0".join(parts).encode())
 
 
 if __name__ == "__main__":
-    if len(sys.argv) != 3:
-        sys.exit("usage: recorded_fuzz_seeds.py RECORDING_DIR OUT_DIR")
-    main(sys.argv[1], sys.argv[2])
+    if len(sys.argv) not in (3, 4):
+        sys.exit("usage: recorded_fuzz_seeds.py RECORDING_DIR OUT_DIR [ACOUSTIC_RECORDING_DIR]")
+    main(*sys.argv[1:])

@@ -140,17 +140,24 @@ def main(data_path, out_path):
 
 
 def draw_cdf(ax, data):
-    for t, traj in enumerate(data["trajectories"]):
-        e = np.sort(np.array(traj["errors"]))
-        if len(e):
-            ax.plot(e, np.arange(1, len(e) + 1) / len(e), color=COLORS[t % len(COLORS)], label=traj["name"])
+    if data.get("variants"):
+        # A grid: one CDF per variant (method), from the quantiles the report gives.
+        for v, variant in enumerate(data["variants"]):
+            cdf = np.array(variant.get("error_cdf", []))
+            if len(cdf):
+                ax.plot(cdf[:, 0], cdf[:, 1], color=plt.cm.tab20(v % 20), lw=0.9, label=variant["name"])
+    else:
+        for t, traj in enumerate(data["trajectories"]):
+            e = np.sort(np.array(traj["errors"]))
+            if len(e):
+                ax.plot(e, np.arange(1, len(e) + 1) / len(e), color=COLORS[t % len(COLORS)], label=traj["name"])
     ax.axhline(0.9, color="0.5", lw=0.6, ls=":")
     ax.set_xscale("log")
     ax.set_xlabel("position error (m)")
     ax.set_ylabel("CDF over all steps and runs")
-    ax.set_title("error CDF")
+    ax.set_title("error CDF" + (", every variant" if data.get("variants") else ""))
     ax.grid(True, which="both", alpha=0.3)
-    ax.legend(loc="lower right", fontsize=8)
+    ax.legend(loc="upper left" if data.get("variants") else "lower right", fontsize=5 if data.get("variants") else 8)
 
 
 def finish(fig, data, out_path):

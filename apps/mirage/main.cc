@@ -21,6 +21,7 @@
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
 #include "mirage/channel/cir_synthesizer.h"
 #include "mirage/channel/range_level_simulator.h"
@@ -232,9 +233,10 @@ int Describe(const std::string& name, bool markdown) {
                                "' (methods: " + mirage::methods::MethodNames() + "; sections: " + sections + ")");
 }
 
-// Writes one simulated run as recorded data (anchors.csv, ranges.csv, truth.csv) plus a
-// scenario.yaml that runs it, so that `mirage run DIR/scenario.yaml` replays exactly the ranges
-// the Monte-Carlo driver's tracker sees in that run.
+// Writes one simulated run as recorded data (anchors.csv, ranges.csv, truth.csv, or mics.csv,
+// toa.csv, truth.csv for an acoustic scenario) plus a scenario.yaml that runs it, so that
+// `mirage run DIR/scenario.yaml` replays exactly the ranges or stamps the Monte-Carlo driver's
+// estimator sees in that run.
 int Simulate(const SimulateArgs& args) {
   mirage::io::ScenarioOverrides overrides;
   overrides.seed = ParseSeed(args.seed);
@@ -250,9 +252,14 @@ int Simulate(const SimulateArgs& args) {
     throw mirage::io::InputError(args.scenario + ": method " + config.method.name +
                                  " consumes CIRs, which have no recorded-data form; use mirage run");
   }
-  if (config.method.input == mirage::methods::MethodInput::kToaStamps) {
-    throw mirage::io::InputError(args.scenario + ": method " + config.method.name +
-                                 " consumes arrival-time stamps, whose recorded form (toa.csv) is not written yet; use mirage run");
+  if (config.inertial != mirage::pipeline::InertialModel::kNone) {
+    throw mirage::io::InputError(args.scenario + ": measurements.imu: the inertial records have no recorded-data form "
+                                 "(mics.csv, toa.csv hold the stamps only); remove it to simulate the stamps");
+  }
+  if (const auto options = nlohmann::json::parse(config.method.options_json);
+      options.contains("inertial") && options["inertial"] == true) {
+    throw mirage::io::InputError(args.scenario + ": method.inertial: the inertial records have no recorded-data form "
+                                 "(mics.csv, toa.csv hold the stamps only); set it false to simulate the stamps");
   }
   int trajectory = 0;
   if (!args.trajectory.empty()) {
@@ -279,11 +286,13 @@ int Simulate(const SimulateArgs& args) {
     std::size_t rows = 0;
     for (const auto& step : recording.steps) {
       for (const auto& anchor : step.anchors) rows += anchor.ranges.size();
+      for (const auto& mic : step.toas) rows += mic.toa_s.size();
     }
-    std::cout << fmt::format("mirage simulate: {} trajectory '{}' run {} (seed {}): {} steps, {} ranges -> {}/"
-                             "{{anchors,ranges,truth}}.csv and scenario.yaml\n",
+    std::cout << fmt::format("mirage simulate: {} trajectory '{}' run {} (seed {}): {} steps, {} {} -> {}/"
+                             "{{{},truth}}.csv and scenario.yaml\n",
                              config.name, config.trajectories[static_cast<std::size_t>(trajectory)].name, args.run,
-                             config.seed, recording.steps.size(), rows, args.out);
+                             config.seed, recording.steps.size(), rows, recording.toa_stamps ? "stamps" : "ranges",
+                             args.out, recording.toa_stamps ? "mics,toa" : "anchors,ranges");
   }
   return 0;
 }

@@ -31,6 +31,30 @@ std::string ReadFile(const std::string& path) {
   return text.str();
 }
 
+// mics.csv and toa.csv; fmt's "{}" is the shortest representation that reads back to the same double.
+void WriteStamps(const std::string& dir, const pipeline::Recording& recording) {
+  {
+    OutputFile out_file(dir + "/mics.csv");
+    auto& out = out_file.stream();
+    out << "receiver_id,x_m,y_m,z_m\n";
+    for (std::size_t m = 0; m < recording.anchor_ids.size(); ++m) {
+      const Vec3& p = recording.anchors_m[m];
+      out << fmt::format("{},{},{},{}\n", recording.anchor_ids[m], p.x(), p.y(), p.z());
+    }
+    out_file.Commit();
+  }
+  OutputFile out_file(dir + "/toa.csv");
+  auto& out = out_file.stream();
+  out << "t_s,receiver_id,toa_s\n";
+  for (const auto& step : recording.steps) {
+    for (const auto& stamps : step.toas) {
+      const std::string& id = recording.anchor_ids[static_cast<std::size_t>(stamps.receiver_index)];
+      for (const double toa_s : stamps.toa_s) out << fmt::format("{},{},{}\n", step.t_s, id, toa_s);
+    }
+  }
+  out_file.Commit();
+}
+
 }  // namespace
 
 void ParseAnchorsCsv(std::string_view text, const std::string& file, pipeline::Recording& recording) {
@@ -84,6 +108,53 @@ void ParseRangesCsv(std::string_view text, const std::string& file, pipeline::Re
   if (recording.steps.empty()) throw InputError(file + ": no ranges (expected at least one row after the header)");
 }
 
+void ParseMicsCsv(std::string_view text, const std::string& file, pipeline::Recording& recording) {
+  CsvReader csv(text, file, {{"receiver_id"}, {"x_m"}, {"y_m"}, {"z_m"}});
+  recording.toa_stamps = true;
+  recording.anchor_ids.clear();
+  recording.anchors_m.clear();
+  recording.anchors_have_z = true;
+  while (csv.Next()) {
+    const std::string id(csv.Field("receiver_id"));
+    if (id.empty()) csv.Fail("receiver_id", "missing value (expected a microphone id)");
+    for (const auto& known : recording.anchor_ids) {
+      if (known == id) csv.Fail("receiver_id", "duplicate microphone id");
+    }
+    recording.anchor_ids.push_back(id);
+    recording.anchors_m.emplace_back(csv.Number("x_m"), csv.Number("y_m"), csv.Number("z_m"));
+  }
+  if (recording.anchor_ids.empty()) throw InputError(file + ": no microphones (expected at least one row after the header)");
+}
+
+void ParseToaCsv(std::string_view text, const std::string& file, pipeline::Recording& recording) {
+  CsvReader csv(text, file, {{"t_s"}, {"receiver_id"}, {"toa_s"}});
+  std::map<std::string, int, std::less<>> receiver_index;
+  for (std::size_t m = 0; m < recording.anchor_ids.size(); ++m) receiver_index[recording.anchor_ids[m]] = static_cast<int>(m);
+  recording.steps.clear();
+  while (csv.Next()) {
+    const double t_s = csv.Number("t_s");
+    const auto it = receiver_index.find(csv.Field("receiver_id"));
+    if (it == receiver_index.end()) csv.Fail("receiver_id", "unknown microphone (not in the mics file)");
+    const double toa_s = csv.Number("toa_s");
+    if (recording.steps.empty() || t_s > recording.steps.back().t_s) {
+      pipeline::RecordedStep step;
+      step.t_s = t_s;
+      for (std::size_t m = 0; m < recording.anchor_ids.size(); ++m) {
+        core::ToaStamps stamps;
+        stamps.t_s = t_s;
+        stamps.receiver_id = recording.anchor_ids[m];
+        stamps.receiver_index = static_cast<int>(m);
+        step.toas.push_back(std::move(stamps));
+      }
+      recording.steps.push_back(std::move(step));
+    } else if (t_s < recording.steps.back().t_s) {
+      csv.Fail("t_s", fmt::format("time goes backwards (the previous row has t_s = {})", recording.steps.back().t_s));
+    }
+    recording.steps.back().toas[static_cast<std::size_t>(it->second)].toa_s.push_back(toa_s);
+  }
+  if (recording.steps.empty()) throw InputError(file + ": no stamps (expected at least one row after the header)");
+}
+
 void ParseTruthCsv(std::string_view text, const std::string& file, pipeline::Recording& recording) {
   CsvReader csv(text, file, {{"t_s"}, {"x_m"}, {"y_m"}, {"z_m", false}});
   recording.truth.clear();
@@ -101,8 +172,14 @@ void ParseTruthCsv(std::string_view text, const std::string& file, pipeline::Rec
 
 pipeline::Recording LoadRecording(const RecordingFiles& files) {
   pipeline::Recording recording;
-  ParseAnchorsCsv(ReadFile(files.anchors), files.anchors, recording);
-  ParseRangesCsv(ReadFile(files.ranges), files.ranges, recording);
+  const std::string& data_file = files.toa_stamps() ? files.toa : files.ranges;
+  if (files.toa_stamps()) {
+    ParseMicsCsv(ReadFile(files.mics), files.mics, recording);
+    ParseToaCsv(ReadFile(files.toa), files.toa, recording);
+  } else {
+    ParseAnchorsCsv(ReadFile(files.anchors), files.anchors, recording);
+    ParseRangesCsv(ReadFile(files.ranges), files.ranges, recording);
+  }
   if (files.truth) {
     ParseTruthCsv(ReadFile(*files.truth), *files.truth, recording);
     const double first_s = recording.truth.front().t_s;
@@ -110,7 +187,7 @@ pipeline::Recording LoadRecording(const RecordingFiles& files) {
     for (const auto& step : recording.steps) {
       if (step.t_s < first_s || step.t_s > last_s) {
         throw InputError(fmt::format("{}: covers t_s in [{}, {}] s, but {} has a step at t_s = {} s", *files.truth,
-                                     first_s, last_s, files.ranges, step.t_s));
+                                     first_s, last_s, data_file, step.t_s));
       }
     }
   }
@@ -121,7 +198,9 @@ void WriteRecording(const std::string& dir, const pipeline::Recording& recording
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
   if (ec) throw InputError(dir + ": cannot create the directory (" + ec.message() + ")");
-  {
+  if (recording.toa_stamps) {
+    WriteStamps(dir, recording);
+  } else {
     const std::string path = dir + "/anchors.csv";
     OutputFile out_file(path);
     auto& out = out_file.stream();
@@ -134,7 +213,7 @@ void WriteRecording(const std::string& dir, const pipeline::Recording& recording
     }
     out_file.Commit();
   }
-  {
+  if (!recording.toa_stamps) {
     const std::string path = dir + "/ranges.csv";
     OutputFile out_file(path);
     auto& out = out_file.stream();

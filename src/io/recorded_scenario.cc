@@ -25,16 +25,27 @@ void WriteRecordedScenario(const Scenario& scenario, int trajectory, const std::
     }
     out[key] = entry.second;
   }
+  const pipeline::TrajectorySpec& walked = e.trajectories[static_cast<std::size_t>(trajectory)];
   YAML::Node measurements(YAML::NodeType::Map);
   measurements["model"] = "recorded";
-  measurements["anchors"] = "anchors.csv";
-  measurements["ranges"] = "ranges.csv";
+  const bool stamps = e.measurement_model == pipeline::MeasurementModel::kAcoustic;
+  measurements[stamps ? "mics" : "anchors"] = stamps ? "mics.csv" : "anchors.csv";
+  measurements[stamps ? "toa" : "ranges"] = stamps ? "toa.csv" : "ranges.csv";
   measurements["truth"] = "truth.csv";
   // The shortest text that reads back as the same double ("0.1", not "0.10000000000000001").
   if (e.measurement_model == pipeline::MeasurementModel::kRanging) {
     measurements["range_sigma_m"] = fmt::format("{}", e.ranging.range_sigma_m);
   }
-  measurements["speed_mps"] = fmt::format("{}", e.trajectories[static_cast<std::size_t>(trajectory)].speed_mps);
+  if (stamps) {
+    // The facts the acoustic estimators' defaults derive from in the simulation
+    // (pipeline::PhysicalKeysOf), and the sender's nominal height they take as known.
+    measurements["height_m"] = fmt::format("{}", walked.height_m);
+    measurements["stamp_sigma_s"] = fmt::format("{}", e.acoustic.stamp_sigma_s);
+    measurements["detection_probability"] = fmt::format("{}", e.acoustic.detection_probability);
+    measurements["false_alarm_rate"] = fmt::format("{}", e.acoustic.false_alarm_rate);
+    measurements["dt_s"] = fmt::format("{}", walked.dt_s);
+  }
+  measurements["speed_mps"] = fmt::format("{}", walked.speed_mps);
   out["measurements"] = measurements;
 
   YAML::Emitter emitter;
@@ -42,9 +53,12 @@ void WriteRecordedScenario(const Scenario& scenario, int trajectory, const std::
   emitter << out;
   const std::string path = dir + "/scenario.yaml";
   OutputFile output(path);
+  const bool starts_itself = scenario.method->input != methods::MethodInput::kToaStamps;
   output.stream() << "# Written by `mirage simulate " << scenario.file << "`: runs the recording in this directory.\n"
-                  << "# Without the `truth:` line the estimator starts itself from the first epochs (no error "
-                     "figures).\n"
+                  << (starts_itself ? "# Without the `truth:` line the estimator starts itself from the first epochs (no "
+                                      "error figures).\n"
+                                    : "# Without the `truth:` line give `start_m: [x, y]` under measurements: the "
+                                      "acoustic method cannot start itself (no error figures then).\n")
                   << emitter.c_str() << "\n";
   output.Commit();
 }

@@ -190,8 +190,8 @@ json MakeJsonReport(const Scenario& scenario, const pipeline::ExperimentResult& 
   }
   if (scenario.recording_files) {
     const auto& f = *scenario.recording_files;
-    j["recorded_data"] = {{"anchors", f.anchors},
-                          {"ranges", f.ranges},
+    j["recorded_data"] = {{f.toa_stamps() ? "mics" : "anchors", f.toa_stamps() ? f.mics : f.anchors},
+                          {f.toa_stamps() ? "toa" : "ranges", f.toa_stamps() ? f.toa : f.ranges},
                           {"truth", f.truth ? json(*f.truth) : json(nullptr)},
                           {"epochs", base.recording->steps.size()}};
   }
@@ -228,7 +228,8 @@ std::string FormatResultTable(const Scenario& scenario, const pipeline::Experime
   }
   if (!result.variants.front().bound.empty()) out += fmt::format("(peb_m: the RMS of the {} position bound)\n", bound);
   if (scenario.recording_files) {
-    out += fmt::format("recorded data: {} ({} epochs){}\n", scenario.recording_files->ranges, base.recording->steps.size(),
+    const auto& f = *scenario.recording_files;
+    out += fmt::format("recorded data: {} ({} epochs){}\n", f.toa_stamps() ? f.toa : f.ranges, base.recording->steps.size(),
                        scenario.recording_files->truth ? "" : "; no truth file, so no position error");
   }
   const auto& front = summaries.front();

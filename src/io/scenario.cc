@@ -282,6 +282,36 @@ void ReadAcoustic(YamlMap& m, Experiment& e, const core::PhysicalKeys& keys) {
   }
 }
 
+// `measurements: {model: recorded, mics, toa, ...}`: a sound sender's arrival-time stamps and the
+// facts the acoustic methods need that the files cannot show (the sender's height, the stamps'
+// noise as the physical range noise, detection and false alarms).
+void ReadRecordedStamps(YamlMap& m, Experiment& e, RecordingFiles& f) {
+  for (const char* key : {"anchors", "ranges"}) {
+    if (m.Has(key)) {
+      m.Fail(key, "a recording has either anchors and ranges (range sets) or mics and toa (arrival-time stamps), not both");
+    }
+  }
+  for (const char* key : {"mics", "toa"}) {
+    if (!m.Has(key)) m.Fail(key, "missing: a recording of arrival-time stamps needs both mics (mics.csv) and toa (toa.csv)");
+  }
+  if (m.Has("epoch_window_s")) m.Fail("epoch_window_s", "not used with toa: the rows of one emission share t_s");
+  if (m.Has("range_sigma_m")) m.Fail("range_sigma_m", "not used with toa: give the stamps' noise as stamp_sigma_s (s)");
+  if (e.medium.kind != core::MediumKind::kSound) m.Fail("model", "arrival-time stamps (mics, toa) need medium: {kind: sound}");
+  f.mics = m.FilePath("mics");
+  f.toa = m.FilePath("toa");
+  if (!m.Has("height_m")) {
+    m.Fail("height_m", "missing: the sender's height (m), which the planar acoustic estimators take as known");
+  }
+  e.recorded_height_m = m.NumberInRange("height_m", 0.0, -kHuge, kHuge, "m");
+  // As for a simulated scenario (pipeline::PhysicalKeysOf): a stamp's noise as a range at the
+  // speed the estimator assumes.
+  if (m.Has("stamp_sigma_s")) e.recorded_range_sigma_m = e.medium.speed_mps * m.NumberInRange("stamp_sigma_s", 0.3e-3, 1e-12, kHuge, "s");
+  if (m.Has("detection_probability")) {
+    e.recorded_detection_probability = m.NumberInRange("detection_probability", 1.0, 0.0, 1.0, "");
+  }
+  if (m.Has("false_alarm_rate")) e.recorded_clutter_rate = m.NumberInRange("false_alarm_rate", 0.0, 0.0, kHuge, "");
+}
+
 // `measurements`: the model and its keys.
 void ReadMeasurements(YamlMap m, Experiment& e, std::optional<RecordingFiles>& files, const core::PhysicalKeys& keys) {
   const std::string model = m.String("model", std::string("cir"));
@@ -300,13 +330,21 @@ void ReadMeasurements(YamlMap m, Experiment& e, std::optional<RecordingFiles>& f
   } else if (model == "recorded") {
     e.measurement_model = MeasurementModel::kRecorded;
     RecordingFiles f;
-    f.anchors = m.FilePath("anchors");
-    f.ranges = m.FilePath("ranges");
+    if (m.Has("mics") || m.Has("toa")) {
+      ReadRecordedStamps(m, e, f);
+    } else {
+      for (const char* key : {"height_m", "stamp_sigma_s", "detection_probability", "false_alarm_rate"}) {
+        if (m.Has(key)) m.Fail(key, "only for a recording of arrival-time stamps (mics, toa)");
+      }
+      f.anchors = m.FilePath("anchors");
+      f.ranges = m.FilePath("ranges");
+      e.epoch_window_s = m.NumberInRange("epoch_window_s", e.epoch_window_s, 0.0, 3600.0, "s");
+      if (m.Has("range_sigma_m")) e.recorded_range_sigma_m = m.NumberInRange("range_sigma_m", 0.1, 1e-9, kHuge, "m");
+    }
     if (m.Has("truth")) f.truth = m.FilePath("truth");
     if (m.Has("start_m")) e.start_m = m.Point3("start_m", 0.0);
-    e.epoch_window_s = m.NumberInRange("epoch_window_s", e.epoch_window_s, 0.0, 3600.0, "s");
-    if (m.Has("range_sigma_m")) e.recorded_range_sigma_m = m.NumberInRange("range_sigma_m", 0.1, 1e-9, kHuge, "m");
     if (m.Has("speed_mps")) e.recorded_speed_mps = m.NumberInRange("speed_mps", 1.0, 0.0, kHuge, "m/s");
+    if (m.Has("dt_s")) e.recorded_dt_s = m.NumberInRange("dt_s", 0.1, 1e-9, kHuge, "s");
     m.RejectUnknownKeys();
     files = f;
   } else {
@@ -335,9 +373,10 @@ void LoadRecordedData(const std::string& scenario_file, const RecordingFiles& fi
   for (std::size_t a = 0; a < recording->anchors_m.size(); ++a) {
     const Vec2 p = recording->anchors_m[a].head<2>();
     if (!e.plan.walls().empty() && (!e.plan.Encloses(p) || e.plan.InsideObstacle(p))) {
-      throw InputError(fmt::format("{}: anchor '{}' at [{}, {}] m is outside the floor plan of {} (or inside an obstacle)",
-                                   files.anchors, recording->anchor_ids[a], FormatValue(p.x()), FormatValue(p.y()),
-                                   scenario_file));
+      throw InputError(fmt::format("{}: {} '{}' at [{}, {}] m is outside the floor plan of {} (or inside an obstacle)",
+                                   files.toa_stamps() ? files.mics : files.anchors,
+                                   files.toa_stamps() ? "microphone" : "anchor", recording->anchor_ids[a],
+                                   FormatValue(p.x()), FormatValue(p.y()), scenario_file));
     }
     e.anchors.push_back({recording->anchor_ids[a], recording->anchors_m[a]});
   }
@@ -455,8 +494,15 @@ Experiment ReadExperiment(YamlMap& root, const std::string& file, const methods:
   if (info->input == methods::MethodInput::kRangeSets && e.anchors.empty()) {
     root.Fail("anchors", "method '" + info->name + "' needs at least one anchor");
   }
-  if (info->input == methods::MethodInput::kToaStamps && e.measurement_model != MeasurementModel::kAcoustic) {
-    root.Fail("measurements", "method '" + info->name + "' consumes arrival-time stamps: measurements.model must be acoustic");
+  const bool recorded_stamps = e.recording && e.recording->toa_stamps;
+  if (info->input == methods::MethodInput::kToaStamps && e.measurement_model != MeasurementModel::kAcoustic &&
+      !recorded_stamps) {
+    root.Fail("measurements", "method '" + info->name + "' consumes arrival-time stamps: measurements.model must be acoustic, "
+                              "or recorded with mics and toa");
+  }
+  if (info->input != methods::MethodInput::kToaStamps && recorded_stamps) {
+    root.Fail("measurements", "the recording has arrival-time stamps (mics, toa), which method '" + info->name +
+                                  "' does not consume (use an acoustic method)");
   }
   if (info->input != methods::MethodInput::kToaStamps && e.measurement_model == MeasurementModel::kAcoustic) {
     root.Fail("measurements", "measurements.model acoustic gives arrival-time stamps, which method '" + info->name +

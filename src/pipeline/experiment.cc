@@ -72,7 +72,10 @@ core::PhysicalKeys PhysicalKeysOf(const Experiment& e) {
     case MeasurementModel::kRecorded:
       keys.range_sigma_m = e.recorded_range_sigma_m;
       keys.speed_mps = e.recorded_speed_mps;
-      if (e.recording && e.recording->steps.size() > 1) {
+      keys.detection_probability = e.recorded_detection_probability;
+      keys.clutter_rate = e.recorded_clutter_rate;
+      keys.dt_s = e.recorded_dt_s;
+      if (!keys.dt_s && e.recording && e.recording->steps.size() > 1) {
         std::vector<double> intervals;
         for (std::size_t k = 1; k < e.recording->steps.size(); ++k) {
           intervals.push_back(e.recording->steps[k].t_s - e.recording->steps[k - 1].t_s);

@@ -6,6 +6,17 @@
 namespace mirage::pipeline {
 
 RecordedSource::RecordedSource(const Recording& recording, double epoch_window_s) : recording_(recording) {
+  if (recording.toa_stamps) {
+    // One epoch per emission, as the acoustic simulator makes them: the step's time, one
+    // record per microphone (the rows already say which stamps belong to one emission).
+    for (const auto& step : recording.steps) {
+      core::Epoch epoch;
+      epoch.t_s = step.t_s;
+      epoch.toas = step.toas;
+      epochs_.push_back(std::move(epoch));
+    }
+    return;
+  }
   core::EpochAssembler assembler(epoch_window_s);
   for (const auto& step : recording.steps) {
     for (const auto& anchor : step.anchors) {

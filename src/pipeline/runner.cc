@@ -56,6 +56,7 @@ methods::World MakeWorld(const VariantContext& vc, const GivenPlan& given, int g
   world.physical = PhysicalKeysOf(e);
   if (e.recording) {
     world.agents = {"recorded"};
+    world.agent_height_m = e.recorded_height_m;
   } else if (vc.joint) {
     world.agents = vc.links->truth.names;
     world.agent_height_m = e.trajectories.front().height_m;

@@ -17,7 +17,7 @@ import sys
 SEEDS = (1, 2, 3)
 # Runs per trajectory (per variant for a grid): enough to cover different start offsets while the
 # whole test stays within seconds.
-RUNS = {"coop_room": 2, "recorded": 1}  # a recording is one run
+RUNS = {"coop_room": 2, "recorded": 1, "recorded_acoustic": 1}  # a recording is one run
 DEFAULT_RUNS = 5
 
 

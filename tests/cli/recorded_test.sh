@@ -4,6 +4,8 @@
 # by `mirage run DIR/scenario.yaml` gives exactly the track of the same simulated run (MINT on
 # CIRs and SLAM on range-level draws); without truth.csv the report has no error block but still
 # the trajectory and the map; bad recorded files stop the run with "FILE:LINE:" and exit 2.
+# Acoustic stamps (issue 26 item 9): the replay of mics.csv/toa.csv gives every row of the
+# simulated run's track (estimate, truth, error) bit for bit; bad stamp files exit 2 with FILE:LINE.
 # Usage: recorded_test.sh MIRAGE_BINARY EXAMPLES_DIR WORK_DIR
 set -u
 
@@ -92,6 +94,56 @@ bad negative_range ranges.csv '9s/^\([^,]*,[^,]*\),/\1,-/' "ranges.csv:9: range_
 bad nan_range ranges.csv '11s/^\([^,]*,[^,]*\),[^,]*,/\1,NaN,/' "ranges.csv:11: range_m 'NaN': must be finite"
 bad anchor_outside anchors.csv '2s/.*/A1,9.5,7/' "anchors.csv: anchor 'A1' at [9.5, 7] m is outside"
 bad truth_short truth.csv '100,$d' "truth.csv: covers t_s in"
+
+# Acoustic stamps: simulate, replay, compare every column but the run's name (t_s, truth,
+# estimate, covariance, error) with `mirage run --runs 1`.
+acoustic_scenario=$(dirname "$0")/data/acoustic_short.yaml
+acoustic=$work/acoustic_short
+if ! "$mirage" simulate "$acoustic_scenario" --out "$acoustic" --quiet; then
+  fail "acoustic: mirage simulate failed"
+else
+  "$mirage" run "$acoustic/scenario.yaml" --quiet --csv "$acoustic/replay" --json "$acoustic/replay.json" ||
+    fail "acoustic: replay failed"
+  "$mirage" run "$acoustic_scenario" --runs 1 --quiet --csv "$acoustic/direct" --json "$acoustic/direct.json" ||
+    fail "acoustic: direct run failed"
+  # The JSON has the errors in full precision, and the method's effective options (derived from
+  # the physical keys the replay scenario states).
+  python3 - "$acoustic/replay.json" "$acoustic/direct.json" <<'PY' || fail "acoustic: the replay's report differs"
+import json, sys
+replay, direct = (json.load(open(p)) for p in sys.argv[1:])
+for key in ("position_error_m", "final_error_m", "steps", "acoustic"):
+    assert replay[key] == direct[key], (key, replay[key], direct[key])
+assert replay["recorded_data"]["toa"].endswith("toa.csv"), replay["recorded_data"]
+PY
+  replay_rows=$(cut -d, -f2- "$acoustic/replay/tracks.csv" | tail -n +2)
+  direct_rows=$(cut -d, -f2- "$acoustic/direct/tracks.csv" | tail -n +2)
+  if [[ -z $replay_rows || $replay_rows != "$direct_rows" ]]; then
+    fail "acoustic: the replayed track differs from the simulated run's track"
+  elif [[ $(awk -F, 'NR > 1 && $NF != "" { n++ } END { print n + 0 }' "$acoustic/replay/tracks.csv") -eq 0 ]]; then
+    fail "acoustic: the replay has no errors (truth missing)"
+  else
+    echo "ok   acoustic: replay of mics.csv/toa.csv == simulated run ($(wc -l <<<"$replay_rows") steps)"
+  fi
+fi
+# The inertial input has no recorded form: refused, not dropped.
+printf 'extends: %s\nmethod: {inertial: true}\n' "$(realpath "$acoustic_scenario")" >"$work/acoustic_inertial.yaml"
+"$mirage" simulate "$work/acoustic_inertial.yaml" --out "$work/acoustic_inertial" --quiet 2>"$work/acoustic_inertial.err"
+status=$?
+if [[ $status -ne 2 || $(cat "$work/acoustic_inertial.err") != *"method.inertial: the inertial records have no recorded-data form"* ]]; then
+  fail "acoustic inertial: exit $status, '$(cat "$work/acoustic_inertial.err")'"
+elif [[ -e $work/acoustic_inertial/toa.csv ]]; then
+  fail "acoustic inertial: refused but wrote toa.csv"
+else
+  echo "ok   acoustic inertial: $(cat "$work/acoustic_inertial.err")"
+fi
+
+base=$acoustic
+bad mics_missing_z mics.csv '3s/,[^,]*$//' "mics.csv:3: expected 4 fields"
+bad mics_duplicate mics.csv '3s/^M2,/M1,/' "mics.csv:3: receiver_id 'M1': duplicate microphone id"
+bad toa_unknown_mic toa.csv '6s/,M[0-9],/,M9,/' "toa.csv:6: receiver_id 'M9': unknown microphone"
+bad toa_backwards toa.csv '30s/^[^,]*,/0,/' "toa.csv:30: t_s '0': time goes backwards"
+bad toa_not_a_number toa.csv '8s/,[^,]*$/,0.5s/' "toa.csv:8: toa_s '0.5s': not a number"
+bad toa_nan toa.csv '9s/,[^,]*$/,nan/' "toa.csv:9: toa_s 'nan': must be finite"
 
 [[ $failures -eq 0 ]] || exit 1
 echo "all recorded-data cases passed"

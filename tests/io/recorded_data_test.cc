@@ -3,6 +3,8 @@
 // several unlabeled ranges per anchor, writing and reading back gives the same doubles, and every
 // kind of bad input named by issue 4 (missing field, unknown anchor, time going backwards,
 // negative or NaN range) and by docs/recorded_data.md throws an InputError naming file and line.
+// Recorded acoustic stamps (mics.csv, toa.csv, issue 26 item 9): the same for one step per
+// emission with one ToaStamps record per microphone, as the acoustic simulator makes them.
 #include "mirage/io/recorded_data.h"
 
 #include <unistd.h>
@@ -15,6 +17,7 @@
 #include <gtest/gtest.h>
 
 #include "mirage/io/input_error.h"
+#include "mirage/pipeline/recorded_source.h"
 
 namespace mirage::io {
 namespace {
@@ -187,7 +190,7 @@ TEST_F(RecordedFiles, WriteThenLoadGivesTheSameDoubles) {
   }
   WriteRecording(dir_.string(), r);
   const auto back = LoadRecording({(dir_ / "anchors.csv").string(), (dir_ / "ranges.csv").string(),
-                                   (dir_ / "truth.csv").string()});
+                                   (dir_ / "truth.csv").string(), {}, {}});
   ASSERT_EQ(back.steps.size(), r.steps.size());
   for (std::size_t k = 0; k < r.steps.size(); ++k) {
     EXPECT_EQ(back.steps[k].t_s, r.steps[k].t_s);
@@ -219,7 +222,7 @@ TEST_F(RecordedFiles, WriteThenLoadKeepsTheHeightsOfAThreeDimensionalRecording) 
   }
   WriteRecording(dir_.string(), r);
   const auto back = LoadRecording({(dir_ / "anchors.csv").string(), (dir_ / "ranges.csv").string(),
-                                   (dir_ / "truth.csv").string()});
+                                   (dir_ / "truth.csv").string(), {}, {}});
   EXPECT_TRUE(back.anchors_have_z);
   EXPECT_TRUE(back.truth_has_z);
   EXPECT_EQ(back.anchors_m[0], Vec3(0.5, 7.0, 2.9));
@@ -232,15 +235,170 @@ TEST_F(RecordedFiles, TruthMustCoverEveryStep) {
   const auto anchors = Write("anchors.csv", kAnchors);
   const auto ranges = Write("ranges.csv", "t_s,anchor_id,range_m\n0,A1,1\n2,A1,1\n");
   const auto truth = Write("truth.csv", "t_s,x_m,y_m\n0,1,1\n1,1,1\n");
-  const std::string message = ErrorOf([&] { (void)LoadRecording({anchors, ranges, truth}); });
+  const std::string message = ErrorOf([&] { (void)LoadRecording({anchors, ranges, truth, {}, {}}); });
   EXPECT_NE(message.find("truth.csv: covers t_s in [0, 1] s"), std::string::npos) << message;
   EXPECT_NE(message.find("step at t_s = 2 s"), std::string::npos) << message;
 }
 
 TEST_F(RecordedFiles, MissingFileIsNamed) {
   const auto anchors = Write("anchors.csv", kAnchors);
-  const std::string message = ErrorOf([&] { (void)LoadRecording({anchors, (dir_ / "nope.csv").string(), {}}); });
+  const std::string message = ErrorOf([&] { (void)LoadRecording({anchors, (dir_ / "nope.csv").string(), {}, {}, {}}); });
   EXPECT_NE(message.find("nope.csv: cannot open"), std::string::npos) << message;
+}
+
+// ---- Acoustic stamps: mics.csv, toa.csv ----
+
+const char* const kMics = "receiver_id,x_m,y_m,z_m\nM1,0.6,0.6,3.3\nM2,6,0.5,3.3\nM3,11.4,0.6,3.2\n";
+
+pipeline::Recording WithMics() {
+  pipeline::Recording r;
+  ParseMicsCsv(kMics, "mics.csv", r);
+  return r;
+}
+
+TEST(RecordedStamps, ParsesMicrophonesInThreeDimensions) {
+  const auto r = WithMics();
+  EXPECT_TRUE(r.toa_stamps);
+  EXPECT_TRUE(r.anchors_have_z);
+  ASSERT_EQ(r.anchor_ids.size(), 3u);
+  EXPECT_EQ(r.anchor_ids[2], "M3");
+  EXPECT_EQ(r.anchors_m[2], Vec3(11.4, 0.6, 3.2));
+}
+
+TEST(RecordedStamps, GroupsRowsByEmissionWithOneRecordPerMicrophone) {
+  auto r = WithMics();
+  // Emission 1: two stamps at M3 (direct path and an echo, unlabeled, in file order), one at M1,
+  // none at M2. Emission 2: one stamp at M2. A column order other than the header's usual.
+  ParseToaCsv("toa_s,t_s,receiver_id\n0.53,0.5,M3\n0.5,0.5,M1\n0.51,0.5,M3\n\n0.66,0.65,M2\n", "toa.csv", r);
+  ASSERT_EQ(r.steps.size(), 2u);
+  const auto& first = r.steps[0];
+  EXPECT_EQ(first.t_s, 0.5);
+  EXPECT_TRUE(first.anchors.empty());
+  ASSERT_EQ(first.toas.size(), 3u);
+  for (int m = 0; m < 3; ++m) {
+    const auto& record = first.toas[static_cast<std::size_t>(m)];
+    EXPECT_EQ(record.receiver_index, m);
+    EXPECT_EQ(record.receiver_id, r.anchor_ids[static_cast<std::size_t>(m)]);
+    EXPECT_EQ(record.t_s, 0.5);  // the emission's time, as the simulator stamps its records
+  }
+  EXPECT_EQ(first.toas[0].toa_s, std::vector<double>{0.5});
+  EXPECT_TRUE(first.toas[1].toa_s.empty());
+  EXPECT_EQ(first.toas[2].toa_s, (std::vector<double>{0.53, 0.51}));
+  EXPECT_EQ(r.steps[1].t_s, 0.65);
+  EXPECT_EQ(r.steps[1].toas[1].toa_s, std::vector<double>{0.66});
+  EXPECT_EQ(r.steps[1].toas[1].t_s, 0.65);
+}
+
+TEST(RecordedStamps, ReplaysOneEpochPerEmissionWhateverTheEpochWindow) {
+  auto r = WithMics();
+  ParseToaCsv("t_s,receiver_id,toa_s\n0.5,M1,0.5\n0.5,M2,0.52\n0.51,M3,0.51\n", "toa.csv", r);
+  pipeline::RecordedSource source(r, 1.0);  // a window that would merge both range steps
+  const auto first = source.Next();
+  ASSERT_TRUE(first.has_value());
+  EXPECT_EQ(first->epoch.t_s, 0.5);
+  ASSERT_EQ(first->epoch.toas.size(), 3u);
+  EXPECT_TRUE(first->epoch.range_sets.empty());
+  EXPECT_EQ(first->epoch.toas[1].toa_s, std::vector<double>{0.52});
+  EXPECT_EQ(first->epoch.toas[1].receiver_id, "M2");
+  const auto second = source.Next();
+  ASSERT_TRUE(second.has_value());
+  EXPECT_EQ(second->epoch.t_s, 0.51);
+  EXPECT_EQ(second->epoch.toas[2].toa_s, std::vector<double>{0.51});
+  EXPECT_FALSE(source.Next().has_value());
+}
+
+class BadToa : public ::testing::TestWithParam<BadCase> {};
+
+TEST_P(BadToa, NamesFileAndLine) {
+  const BadCase& c = GetParam();
+  auto r = WithMics();
+  const std::string message = ErrorOf([&] { ParseToaCsv(c.text, "toa.csv", r); });
+  EXPECT_NE(message.find("toa.csv:" + std::to_string(c.line) + ":"), std::string::npos) << message;
+  EXPECT_NE(message.find(c.expect), std::string::npos) << message;
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    RecordedStamps, BadToa,
+    ::testing::Values(
+        BadCase{"missing_field", "t_s,receiver_id,toa_s\n0,M1,0.01\n0,M2\n", "expected 3 fields", 3},
+        BadCase{"empty_toa", "t_s,receiver_id,toa_s\n0,M1,\n", "toa_s '': missing value", 2},
+        BadCase{"unknown_receiver", "t_s,receiver_id,toa_s\n0,M1,0.01\n0,M9,0.02\n",
+                "receiver_id 'M9': unknown microphone", 3},
+        BadCase{"time_backwards", "t_s,receiver_id,toa_s\n0.1,M1,0.1\n0.25,M1,0.25\n0.2,M2,0.2\n",
+                "t_s '0.2': time goes backwards", 4},
+        BadCase{"text_toa", "t_s,receiver_id,toa_s\n0,M1,12ms\n", "toa_s '12ms': not a number", 2},
+        BadCase{"nan_toa", "t_s,receiver_id,toa_s\n0,M1,nan\n", "toa_s 'nan': must be finite", 2},
+        BadCase{"inf_time", "t_s,receiver_id,toa_s\n-inf,M1,0\n", "t_s '-inf': must be finite", 2},
+        BadCase{"missing_column", "t_s,receiver_id\n", "lacks the required column 'toa_s'", 1},
+        BadCase{"range_column", "t_s,receiver_id,toa_s,range_m\n", "unknown column 'range_m'", 1}),
+    [](const ::testing::TestParamInfo<BadCase>& param_info) { return std::string(param_info.param.name); });
+
+TEST(RecordedStamps, RejectsBadMicrophones) {
+  pipeline::Recording r;
+  const auto error = [&](const char* text) { return ErrorOf([&] { ParseMicsCsv(text, "mics.csv", r); }); };
+  EXPECT_NE(error("receiver_id,x_m,y_m\nM1,0,0\n").find("mics.csv:1:"), std::string::npos);
+  EXPECT_NE(error("receiver_id,x_m,y_m\nM1,0,0\n").find("lacks the required column 'z_m'"), std::string::npos);
+  EXPECT_NE(error("receiver_id,x_m,y_m,z_m\nM1,0,0,3\nM1,1,1,3\n").find("mics.csv:3: receiver_id 'M1': duplicate microphone id"),
+            std::string::npos);
+  EXPECT_NE(error("receiver_id,x_m,y_m,z_m\nM1,0,0,3\nM2,1,1\n").find("mics.csv:3: expected 4 fields"), std::string::npos);
+  EXPECT_NE(error("receiver_id,x_m,y_m,z_m\nM1,0,x,3\n").find("mics.csv:2: y_m 'x': not a number"), std::string::npos);
+  EXPECT_NE(error("receiver_id,x_m,y_m,z_m\n,0,0,3\n").find("mics.csv:2: receiver_id '': missing value"), std::string::npos);
+  EXPECT_NE(error("receiver_id,x_m,y_m,z_m\n").find("mics.csv: no microphones"), std::string::npos);
+  auto mics = WithMics();
+  EXPECT_NE(ErrorOf([&] { ParseToaCsv("t_s,receiver_id,toa_s\n", "toa.csv", mics); }).find("toa.csv: no stamps"),
+            std::string::npos);
+}
+
+TEST_F(RecordedFiles, WriteThenLoadStampsGivesTheSameDoubles) {
+  pipeline::Recording r = WithMics();
+  for (int k = 0; k < 4; ++k) {
+    pipeline::RecordedStep step;
+    step.t_s = 0.1 * k + 1.0 / 3.0;
+    step.toas.resize(3);
+    for (int m = 0; m < 3; ++m) {
+      step.toas[static_cast<std::size_t>(m)].t_s = step.t_s;
+      step.toas[static_cast<std::size_t>(m)].receiver_id = r.anchor_ids[static_cast<std::size_t>(m)];
+      step.toas[static_cast<std::size_t>(m)].receiver_index = m;
+    }
+    step.toas[0].toa_s = {step.t_s, step.t_s + M_PI * 1e-3};
+    if (k % 2 == 0) step.toas[2].toa_s = {step.t_s + std::sqrt(2.0) * 1e-2};  // M2 hears nothing
+    r.steps.push_back(step);
+    r.truth.push_back({step.t_s, Vec3(std::exp(1.0), -1.0 / 7.0 * k, 1.3 + 1e-3 / 3.0 * k)});
+  }
+  r.truth_has_z = true;
+  WriteRecording(dir_.string(), r);
+  EXPECT_FALSE(fs::exists(dir_ / "anchors.csv"));
+  EXPECT_FALSE(fs::exists(dir_ / "ranges.csv"));
+  RecordingFiles files;
+  files.mics = (dir_ / "mics.csv").string();
+  files.toa = (dir_ / "toa.csv").string();
+  files.truth = (dir_ / "truth.csv").string();
+  const auto back = LoadRecording(files);
+  EXPECT_TRUE(back.toa_stamps);
+  EXPECT_EQ(back.anchor_ids, r.anchor_ids);
+  EXPECT_EQ(back.anchors_m, r.anchors_m);
+  ASSERT_EQ(back.steps.size(), r.steps.size());
+  for (std::size_t k = 0; k < r.steps.size(); ++k) {
+    EXPECT_EQ(back.steps[k].t_s, r.steps[k].t_s);
+    ASSERT_EQ(back.steps[k].toas.size(), 3u);
+    for (std::size_t m = 0; m < 3; ++m) {
+      EXPECT_EQ(back.steps[k].toas[m].toa_s, r.steps[k].toas[m].toa_s) << k << " " << m;
+      EXPECT_EQ(back.steps[k].toas[m].t_s, r.steps[k].toas[m].t_s);
+      EXPECT_EQ(back.steps[k].toas[m].receiver_id, r.steps[k].toas[m].receiver_id);
+    }
+    EXPECT_EQ(back.truth[k].position_m, r.truth[k].position_m);
+  }
+}
+
+TEST_F(RecordedFiles, TruthMustCoverEveryEmission) {
+  RecordingFiles files;
+  files.mics = Write("mics.csv", kMics);
+  files.toa = Write("toa.csv", "t_s,receiver_id,toa_s\n0,M1,0\n2,M1,2\n");
+  files.truth = Write("truth.csv", "t_s,x_m,y_m,z_m\n0,1,1,1.3\n1,1,1,1.3\n");
+  const std::string message = ErrorOf([&] { (void)LoadRecording(files); });
+  EXPECT_NE(message.find("truth.csv: covers t_s in [0, 1] s, but " + files.toa + " has a step at t_s = 2 s"),
+            std::string::npos)
+      << message;
 }
 
 }  // namespace

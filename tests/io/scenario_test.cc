@@ -20,6 +20,7 @@
 #include <gtest/gtest.h>
 
 #include "mirage/io/input_error.h"
+#include "mirage/methods/acoustic/acoustic_options.h"
 #include "mirage/methods/coop/coop_tracker.h"
 #include "mirage/methods/mint/mint_tracker.h"
 #include "mirage/methods/range_ekf/range_ekf.h"
@@ -482,6 +483,50 @@ TEST(LoadScenario, ReadsTheRecordedExampleWithItsFiles) {
   EXPECT_DOUBLE_EQ(*e.recorded_speed_mps, 0.5);
   EXPECT_FALSE(e.recorded_range_sigma_m.has_value());
   EXPECT_EQ(s.method->name, "mint");
+}
+
+TEST(LoadScenario, ReadsTheRecordedAcousticExampleWithItsStampsAndPhysicalKeys) {
+  const Scenario s = LoadScenario(Example("recorded_acoustic/scenario.yaml"));
+  const Experiment& e = ExperimentOf(s);
+
+  ASSERT_TRUE(s.recording_files.has_value());
+  EXPECT_TRUE(s.recording_files->toa_stamps());
+  EXPECT_EQ(s.recording_files->mics, Example("recorded_acoustic/mics.csv"));
+  EXPECT_EQ(s.recording_files->toa, Example("recorded_acoustic/toa.csv"));
+  ASSERT_NE(e.recording, nullptr);
+  EXPECT_TRUE(e.recording->toa_stamps);
+  ASSERT_EQ(e.anchors.size(), 8u);  // the microphones, from mics.csv
+  EXPECT_EQ(e.anchors[7].position_m, Vec3(0.6, 4.5, 3.3));
+  ASSERT_FALSE(e.recording->steps.empty());
+  EXPECT_EQ(e.recording->steps.front().toas.size(), 8u);
+  EXPECT_EQ(e.recorded_height_m, 1.3);
+  // The physical keys as a simulation derives them: a stamp's noise as a range at the assumed
+  // speed of sound, the stated emission interval (not the median between earliest stamps).
+  const core::PhysicalKeys keys = pipeline::PhysicalKeysOf(e);
+  ASSERT_TRUE(keys.range_sigma_m && keys.dt_s && keys.speed_mps && keys.detection_probability && keys.clutter_rate);
+  EXPECT_EQ(*keys.range_sigma_m, e.medium.speed_mps * 0.15e-3);
+  EXPECT_EQ(*keys.dt_s, 0.15);
+  EXPECT_EQ(*keys.speed_mps, 1.0);
+  EXPECT_EQ(*keys.detection_probability, 0.9);
+  EXPECT_EQ(*keys.clutter_rate, 1.0);
+  const auto& options = OptionsOf<methods::acoustic::AcousticOptions>(e, "acoustic");
+  EXPECT_EQ(options.range_sigma_m, *keys.range_sigma_m);
+  EXPECT_EQ(options.emission_interval_s, 0.15);
+}
+
+TEST_F(ScenarioFiles, RejectsRecordedStampsMixedWithRangesOrLackingTheirKeys) {
+  const std::string mics = Example("recorded_acoustic/mics.csv");
+  const std::string toa = Example("recorded_acoustic/toa.csv");
+  const std::string head = "name: s\nmedium: {kind: sound}\nmethod: {name: acoustic}\nmeasurements:\n  model: recorded\n";
+  const auto load = [&](const std::string& name, const std::string& keys) { return ErrorOf(Write(name, head + keys)); };
+  ExpectError(load("mixed.yaml", "  mics: " + mics + "\n  toa: " + toa + "\n  height_m: 1\n  anchors: a.csv\n"), "mixed.yaml", 9,
+              {"measurements.anchors: a recording has either anchors and ranges"});
+  ExpectError(load("no_toa.yaml", "  mics: " + mics + "\n  height_m: 1\n"), "no_toa.yaml", 0,
+              {"measurements.toa: missing", "needs both mics (mics.csv) and toa (toa.csv)"});
+  ExpectError(load("sigma.yaml", "  mics: " + mics + "\n  toa: " + toa + "\n  height_m: 1\n  range_sigma_m: 0.1\n"),
+              "sigma.yaml", 9, {"measurements.range_sigma_m: not used with toa", "stamp_sigma_s"});
+  ExpectError(load("stamp_keys.yaml", "  anchors: a.csv\n  ranges: r.csv\n  stamp_sigma_s: 0.001\n"), "stamp_keys.yaml", 8,
+              {"measurements.stamp_sigma_s: only for a recording of arrival-time stamps"});
 }
 
 TEST(LoadScenario, AppliesCommandLineOverridesToEveryVariant) {

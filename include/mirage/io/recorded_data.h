@@ -1,10 +1,14 @@
 // SPDX-License-Identifier: MIT
-// Recorded range-level data in CSV files (docs/recorded_data.md, ROADMAP.md "Recorded data"):
+// Recorded data in CSV files (docs/recorded_data.md, ROADMAP.md "Recorded data"), ranges or
+// acoustic arrival-time stamps:
 //   anchors.csv  anchor_id,x_m,y_m[,z_m]
 //   ranges.csv   t_s,anchor_id,range_m[,amplitude]   several unlabeled rows per time and anchor
+//   mics.csv     receiver_id,x_m,y_m,z_m
+//   toa.csv      t_s,receiver_id,toa_s               several unlabeled rows per emission and microphone
 //   truth.csv    t_s,x_m,y_m[,z_m]                   optional
-// Reading is strict: a missing field, an unknown anchor, time going backwards, a negative or
-// non-finite range is an InputError naming the file and line; nothing is guessed or dropped.
+// Reading is strict: a missing field, an unknown anchor or microphone, time going backwards, a
+// negative or non-finite range is an InputError naming the file and line; nothing is guessed or
+// dropped.
 #pragma once
 
 #include <optional>
@@ -23,21 +27,38 @@ void ParseAnchorsCsv(std::string_view text, const std::string& file, pipeline::R
 /// same t_s form one step (they must be consecutive: t_s never decreases).
 void ParseRangesCsv(std::string_view text, const std::string& file, pipeline::Recording& recording);
 
+/// Parses mics.csv into recording.anchor_ids / anchors_m (the microphones, 3-D) and marks the
+/// recording as one of stamps.
+/// @param file the name used in messages
+void ParseMicsCsv(std::string_view text, const std::string& file, pipeline::Recording& recording);
+
+/// Parses toa.csv into recording.steps, one step per emission; the microphones must be parsed
+/// already. Rows with the same t_s are one emission (they must be consecutive: t_s never
+/// decreases); each step has one ToaStamps record per microphone (receiver_index == its row in
+/// mics.csv), empty for a microphone without rows.
+void ParseToaCsv(std::string_view text, const std::string& file, pipeline::Recording& recording);
+
 /// Parses truth.csv into recording.truth (t_s strictly increasing).
 void ParseTruthCsv(std::string_view text, const std::string& file, pipeline::Recording& recording);
 
-/// The files of one recording.
+/// The files of one recording: anchors and ranges, or mics and toa (the other pair empty).
 struct RecordingFiles {
   std::string anchors;
   std::string ranges;
   std::optional<std::string> truth;
+  std::string mics;
+  std::string toa;
+
+  /// Whether the recording is one of arrival-time stamps (mics and toa).
+  [[nodiscard]] bool toa_stamps() const { return !mics.empty(); }
 };
 
 /// Reads and checks a recording. Every step must lie inside the truth's time span when a truth
 /// file is given (the error needs a true position at every step).
 pipeline::Recording LoadRecording(const RecordingFiles& files);
 
-/// Writes anchors.csv, ranges.csv and (with truth) truth.csv into `dir` (created if missing).
+/// Writes anchors.csv and ranges.csv (mics.csv and toa.csv for a recording of stamps) and, with
+/// truth, truth.csv into `dir` (created if missing).
 /// Numbers are written in their shortest exact form, so reading them back gives the same doubles.
 void WriteRecording(const std::string& dir, const pipeline::Recording& recording);
 

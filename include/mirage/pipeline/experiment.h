@@ -157,6 +157,15 @@ struct Experiment {
   /// physical facts a file cannot show), if given.
   std::optional<double> recorded_range_sigma_m;
   std::optional<double> recorded_speed_mps;
+  /// Recorded data: the step time (a sender's emission interval) the owner states, if given; else
+  /// the median time between steps.
+  std::optional<double> recorded_dt_s;
+  /// Recorded stamps: the detection probability and the false alarms per microphone and emission
+  /// the owner states, if given.
+  std::optional<double> recorded_detection_probability;
+  std::optional<double> recorded_clutter_rate;
+  /// Recorded stamps: the sender's known height (m), World::agent_height_m of the planar methods.
+  std::optional<double> recorded_height_m;
 
   // What the estimator is told.
   PlanError plan_error;
@@ -186,9 +195,9 @@ std::vector<std::string> Validate(const Experiment& experiment);
 
 /// The scenario's physical facts, as far as it states them: the range noise of a ranging model
 /// or a recording's stated one, detection probability and clutter rate of the range models, the
-/// trajectories' common step time and the largest walking speed (or a recording's stated speed
-/// and its epochs' median interval). The defaults that depend on noise or motion are derived
-/// from these (core/options_descriptor.h).
+/// trajectories' common step time and the largest walking speed (or a recording's stated keys,
+/// its step time by default the median interval between its steps). The defaults that depend on
+/// noise or motion are derived from these (core/options_descriptor.h).
 core::PhysicalKeys PhysicalKeysOf(const Experiment& experiment);
 
 }  // namespace mirage::pipeline

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
-// Epochs read from a recording (anchors.csv, ranges.csv, truth.csv; docs/recorded_data.md): the
-// range sets of each time, grouped by the epoch rule (the experiment's epoch window), with the
-// truth interpolated at each epoch when the recording has it.
+// Epochs read from a recording (docs/recorded_data.md): the range sets of each time (anchors.csv,
+// ranges.csv), grouped by the epoch rule (the experiment's epoch window), or one epoch per
+// emission with one ToaStamps record per microphone (mics.csv, toa.csv; the window does not
+// apply), with the truth interpolated at each epoch when the recording has it (truth.csv).
 #pragma once
 
 #include <optional>
@@ -14,7 +15,8 @@ namespace mirage::pipeline {
 
 class RecordedSource final : public EpochSource {
  public:
-  /// @param epoch_window_s the epoch rule's window (s), >= 0 (0: rows with one time stamp).
+  /// @param epoch_window_s the epoch rule's window (s), >= 0 (0: rows with one time stamp);
+  ///        unused for a recording of stamps.
   RecordedSource(const Recording& recording, double epoch_window_s);
 
   std::optional<SourceStep> Next() override;
