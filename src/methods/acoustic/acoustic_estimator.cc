@@ -49,15 +49,34 @@ AcousticEstimator::AcousticEstimator(const AcousticOptions& options, const World
   if (world_.anchors.size() < 3) throw std::invalid_argument("acoustic: at least 3 microphones are needed");
   c_mps_ = world_.channel.medium.speed_mps;
   height_m_ = world_.agent_height_m.value_or(0.0);
+  for (const auto& anchor : world_.anchors) mics_m_.push_back(anchor.position_m);
+  // The combinatorial method's sigma and TDOA bound are the method's own.
+  los_ = options_.los;
+  los_.range_sigma_m = options_.range_sigma_m;
+  los_.tdoa_bound = options_.tdoa_bound_gate;
+  los_.tdoa_bound_sigmas = options_.tdoa_bound_sigmas;
   const auto& plan = world_.floor_plan;
   if (options_.echo_order > 0 && !plan.walls().empty() && std::isfinite(plan.ceiling_z_m())) {
     reflectors_ = geometry::ReflectorsFromPlan(plan);
   }
 }
 
-Vec3 AcousticEstimator::Position() const {
-  if (planar()) return {x_(0), x_(1), height_m_};
-  return x_.head<3>();
+Vec3 AcousticEstimator::PositionOf(const Eigen::VectorXd& x) const {
+  if (planar()) return {x(0), x(1), height_m_};
+  return x.head<3>();
+}
+
+double AcousticEstimator::TdoaBoundMargin() const {
+  return options_.tdoa_bound_sigmas * std::sqrt(2.0) * options_.range_sigma_m;
+}
+
+std::vector<ChosenStamp> AcousticEstimator::EarliestStamps(const StampsByReceiver& stamps) const {
+  std::vector<ChosenStamp> earliest;
+  for (std::size_t i = 0; i < stamps.size(); ++i) {
+    if (!stamps[i].empty()) earliest.push_back({static_cast<int>(i), *std::min_element(stamps[i].begin(), stamps[i].end())});
+  }
+  if (options_.tdoa_bound_gate) earliest = ApplyTdoaBound(std::move(earliest), world_.anchors, TdoaBoundMargin());
+  return earliest;
 }
 
 AgentEstimate AcousticEstimator::Estimate() const {
@@ -188,7 +207,7 @@ std::vector<AcousticEstimator::Row> AcousticEstimator::AssociateRows(const Stamp
                                                                       const Eigen::MatrixXd& P_lin, int echo_order) const {
   const int d = dim();
   const int n = static_cast<int>(x_lin.size());
-  const Vec3 sender_m = planar() ? Vec3(x_lin(0), x_lin(1), height_m_) : Vec3(x_lin.head<3>());
+  const Vec3 sender_m = PositionOf(x_lin);
   const double r_m2 = options_.range_sigma_m * options_.range_sigma_m;
   // Per microphone its predicted paths (direct, and echoes to echo_order) and the stamps paired
   // with them (path_association.h).
@@ -224,7 +243,7 @@ std::vector<AcousticEstimator::Row> AcousticEstimator::AssociateRows(const Stamp
   }
   if (options_.tdoa_bound_gate) {
     // The bound holds between direct paths only.
-    direct = ApplyTdoaBound(std::move(direct), world_.anchors, options_.tdoa_bound_sigmas * std::sqrt(2.0) * options_.range_sigma_m);
+    direct = ApplyTdoaBound(std::move(direct), world_.anchors, TdoaBoundMargin());
   }
   std::vector<Row> rows;
   for (const auto& c : direct) rows.push_back({c.receiver, c.z_m, direct_paths[static_cast<std::size_t>(c.receiver)]});
@@ -235,16 +254,9 @@ std::vector<AcousticEstimator::Row> AcousticEstimator::AssociateRows(const Stamp
 std::vector<AcousticEstimator::Row> AcousticEstimator::FirstArrivalRows(const StampsByReceiver& stamps,
                                                                          const Eigen::VectorXd& x_lin) const {
   const int d = dim();
-  const Vec3 sender_m = planar() ? Vec3(x_lin(0), x_lin(1), height_m_) : Vec3(x_lin.head<3>());
-  std::vector<ChosenStamp> first;
-  for (std::size_t i = 0; i < stamps.size(); ++i) {
-    if (!stamps[i].empty()) first.push_back({static_cast<int>(i), *std::min_element(stamps[i].begin(), stamps[i].end())});
-  }
-  if (options_.tdoa_bound_gate) {
-    first = ApplyTdoaBound(std::move(first), world_.anchors, options_.tdoa_bound_sigmas * std::sqrt(2.0) * options_.range_sigma_m);
-  }
+  const Vec3 sender_m = PositionOf(x_lin);
   std::vector<Row> rows;
-  for (const auto& c : first) {
+  for (const auto& c : EarliestStamps(stamps)) {
     const auto paths = PredictPaths({}, sender_m, world_.anchors[static_cast<std::size_t>(c.receiver)].position_m, x_lin(2 * d), 0);
     if (!paths.empty()) rows.push_back({c.receiver, c.z_m, paths.front()});
   }
@@ -391,13 +403,7 @@ StepOutput AcousticEstimator::Snapshot(const core::Epoch& epoch) {
   out.expected = static_cast<int>(world_.anchors.size());
   // Each microphone's earliest stamp (the direct path when it was heard), as c (T - t_epoch).
   const StampsByReceiver stamps = Stamps(epoch, epoch.t_s);
-  std::vector<ChosenStamp> chosen;
-  for (std::size_t i = 0; i < stamps.size(); ++i) {
-    if (!stamps[i].empty()) chosen.push_back({static_cast<int>(i), *std::min_element(stamps[i].begin(), stamps[i].end())});
-  }
-  if (options_.tdoa_bound_gate) {
-    chosen = ApplyTdoaBound(std::move(chosen), world_.anchors, options_.tdoa_bound_sigmas * std::sqrt(2.0) * options_.range_sigma_m);
-  }
+  const std::vector<ChosenStamp> chosen = EarliestStamps(stamps);
   const std::size_t unknowns = planar() ? 3 : 4;
   if (chosen.size() < unknowns) {
     out.agents.push_back(last_);  // no fix: the last one stands, the epoch counts as a failure
@@ -447,13 +453,7 @@ StepOutput AcousticEstimator::Snapshot(const core::Epoch& epoch) {
 StepOutput AcousticEstimator::Combinatorial(const core::Epoch& epoch) {
   StepOutput out;
   out.expected = static_cast<int>(world_.anchors.size());
-  LosIdentificationOptions los = options_.los;
-  los.range_sigma_m = options_.range_sigma_m;
-  los.tdoa_bound = options_.tdoa_bound_gate;
-  los.tdoa_bound_sigmas = options_.tdoa_bound_sigmas;
-  std::vector<Vec3> mics;
-  for (const auto& anchor : world_.anchors) mics.push_back(anchor.position_m);
-  const auto fix = IdentifyLos(mics, Stamps(epoch, epoch.t_s), height_m_, los);
+  const auto fix = IdentifyLos(mics_m_, Stamps(epoch, epoch.t_s), height_m_, los_);
   // A fix outside the floor plan's bounds is no fix: the sender is in the room (a far mirror
   // root can gather votes when the voters' rows are nearly parallel).
   bool inside = true;

@@ -89,7 +89,13 @@ class AcousticEstimator final : public Estimator {
  private:
   [[nodiscard]] bool planar() const { return options_.mode == "planar"; }
   [[nodiscard]] int dim() const { return planar() ? 2 : 3; }
-  [[nodiscard]] Vec3 Position() const;
+  /// The sender's position in state x (planar: at the known height).
+  [[nodiscard]] Vec3 PositionOf(const Eigen::VectorXd& x) const;
+  [[nodiscard]] Vec3 Position() const { return PositionOf(x_); }
+  /// The TDOA bound's margin (m): tdoa_bound_sigmas sigmas of a stamp difference.
+  [[nodiscard]] double TdoaBoundMargin() const;
+  /// Each microphone's earliest stamp, then the TDOA bound (Eq. 5.5) when it is on.
+  [[nodiscard]] std::vector<ChosenStamp> EarliestStamps(const StampsByReceiver& stamps) const;
   [[nodiscard]] StampsByReceiver Stamps(const core::Epoch& epoch, double t_ref_s) const;
   /// The emission time (s) the epoch's earliest stamps imply at position p: their median of
   /// T_first - |p - M_i| / c; empty without stamps.
@@ -128,6 +134,8 @@ class AcousticEstimator final : public Estimator {
   bool pdr_started_ = false;
   World world_;
   std::vector<geometry::Reflector3> reflectors_;  // walls, floor, ceiling: the echoes' surfaces
+  std::vector<Vec3> mics_m_;                      // the microphones' positions, in anchor order
+  LosIdentificationOptions los_;                  // the combinatorial method's options, complete
   double c_mps_ = 343.0;
   double height_m_ = 0.0;
   Eigen::VectorXd x_;
