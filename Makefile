@@ -46,7 +46,7 @@ fuzz:
 	    -DMIRAGE_BUILD_FUZZERS=ON -DMIRAGE_BUILD_TESTS=OFF -DMIRAGE_BUILD_BENCH=OFF > /dev/null
 	@cmake --build $(BUILD_DIR)-fuzz -j $(JOBS) --target scenario_fuzzer recorded_data_fuzzer
 	@mkdir -p $(BUILD_DIR)-fuzz/corpus && cp examples/*.yaml tests/cli/bad/*.yaml $(BUILD_DIR)-fuzz/corpus/ 2>/dev/null || true
-	@mkdir -p $(BUILD_DIR)-fuzz/corpus_csv && python3 scripts/recorded_fuzz_seeds.py examples/recorded $(BUILD_DIR)-fuzz/corpus_csv examples/recorded_acoustic
+	@mkdir -p $(BUILD_DIR)-fuzz/corpus_csv && python3 scripts/recorded_fuzz_seeds.py examples/recorded $(BUILD_DIR)-fuzz/corpus_csv examples/recorded_acoustic tests/io/data/recorded_tdoa
 	@cd $(BUILD_DIR)-fuzz && status=0; ./bin/scenario_fuzzer -max_total_time=$(FUZZ_SECONDS) \
 	    -max_len=16384 -timeout=10 -rss_limit_mb=4096 -print_final_stats=1 corpus > fuzz.log 2>&1 \
 	    || status=$$?; tail -n 8 fuzz.log; [ $$status -eq 0 ] || exit $$status; \

@@ -1,10 +1,10 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: MIT
 """Seeds for fuzz/recorded_data_fuzzer.cc from a range recording directory and, optionally, an
-acoustic one: the fuzzer's input is anchors.csv, ranges.csv, truth.csv, mics.csv and toa.csv joined
-by NUL bytes. Writes the recordings cut short, without truth, and with one bad row of each kind
-the readers reject.
-Usage: recorded_fuzz_seeds.py RECORDING_DIR OUT_DIR [ACOUSTIC_RECORDING_DIR]"""
+acoustic one and a pairwise-TDOA one: the fuzzer's input is anchors.csv, ranges.csv, truth.csv,
+mics.csv, toa.csv and tdoa.csv joined by NUL bytes. Writes the recordings cut short, without
+truth, and with one bad row of each kind the readers reject.
+Usage: recorded_fuzz_seeds.py RECORDING_DIR OUT_DIR [ACOUSTIC_RECORDING_DIR [TDOA_RECORDING_DIR]]"""
 import pathlib
 import sys
 
@@ -31,7 +31,31 @@ def acoustic_seeds(src):
     }
 
 
-def main(src, out, acoustic=None):
+def tdoa_seeds(src):
+    """Seeds of the TDOA reader: the 3-D anchors, no ranges, the truth, no mics or toa, tdoa."""
+    anchors = (src / "anchors.csv").read_text()
+    tdoa = (src / "tdoa.csv").read_text()
+    truth = (src / "truth.csv").read_text()
+    last_t = tdoa.splitlines()[-1].split(",")[0]
+    flat = "".join(",".join(row.split(",")[:3]) + "\n" for row in anchors.splitlines())
+
+    def seed(a, t, tr=truth):
+        return (a, "", tr, "", "", t)
+
+    return {
+        "tdoa_full": seed(anchors, tdoa),
+        "tdoa_no_truth": seed(anchors, tdoa, ""),
+        "tdoa_outlier": seed(anchors, tdoa + f"{last_t},A0,A1,-42.5\n"),
+        "tdoa_anchors_without_z": seed(flat, tdoa),
+        "tdoa_unknown_id": seed(anchors, tdoa + f"{last_t},A0,ZZ,0.1\n"),
+        "tdoa_same_ids": seed(anchors, tdoa + f"{last_t},A3,A3,0.1\n"),
+        "tdoa_backwards": seed(anchors, tdoa + "0,A0,A1,0.1\n"),
+        "tdoa_nan": seed(anchors, tdoa + f"{last_t},A0,A1,nan\n"),
+        "tdoa_missing_field": seed(anchors, tdoa + f"{last_t},A0,A1\n"),
+    }
+
+
+def main(src, out, acoustic=None, tdoa=None):
     src, out = pathlib.Path(src), pathlib.Path(out)
     out.mkdir(parents=True, exist_ok=True)
     anchors = (src / "anchors.csv").read_text()
@@ -49,11 +73,13 @@ def main(src, out, acoustic=None):
     }
     if acoustic is not None:
         seeds.update(acoustic_seeds(pathlib.Path(acoustic)))
+    if tdoa is not None:
+        seeds.update(tdoa_seeds(pathlib.Path(tdoa)))
     for name, parts in seeds.items():
         (out / name).write_bytes("\0".join(parts).encode())
 
 
 if __name__ == "__main__":
-    if len(sys.argv) not in (3, 4):
-        sys.exit("usage: recorded_fuzz_seeds.py RECORDING_DIR OUT_DIR [ACOUSTIC_RECORDING_DIR]")
+    if len(sys.argv) not in (3, 4, 5):
+        sys.exit("usage: recorded_fuzz_seeds.py RECORDING_DIR OUT_DIR [ACOUSTIC_RECORDING_DIR [TDOA_RECORDING_DIR]]")
     main(*sys.argv[1:])

@@ -168,6 +168,11 @@ const core::OptionsDescriptor<AcousticStampOptions>& AcousticStampOptionsDescrip
               .range = ValueRange::Closed(-1000.0, 1000.0),
               .doc = "The sender's clock rate error: emission k leaves at t_0 + k I (1 + ppm 1e-6); applied by the "
                      "caller that schedules the emissions. 0."});
+    d.Boolean(&O::emission_time_known,
+              {.key = "emission_time_known",
+               .doc = "The system knows each emission's true time (a synchronised sender, or a reference system as "
+                      "the thesis's motion capture, Sec. 8.5): the stamp records carry it, for methods that take the "
+                      "sending time as known. false."});
     d.Check("nlos_bias_max_s >= nlos_bias_min_s", [=](const O& o) -> std::vector<std::string> {
       if (!bias_range.Contains(o.nlos_bias_min_s) || !bias_range.Contains(o.nlos_bias_max_s) ||
           o.nlos_bias_max_s >= o.nlos_bias_min_s) {

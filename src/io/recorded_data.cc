@@ -5,6 +5,8 @@
 #include <fstream>
 #include <map>
 #include <sstream>
+#include <utility>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -55,10 +57,73 @@ void WriteStamps(const std::string& dir, const pipeline::Recording& recording) {
   out_file.Commit();
 }
 
-}  // namespace
+// anchors.csv, with z_m when the recording has heights (always for TDOA, which is 3-D).
+void WriteAnchors(const std::string& dir, const pipeline::Recording& recording) {
+  OutputFile out_file(dir + "/anchors.csv");
+  auto& out = out_file.stream();
+  const bool with_z = recording.anchors_have_z || recording.tdoa;
+  out << (with_z ? "anchor_id,x_m,y_m,z_m\n" : "anchor_id,x_m,y_m\n");
+  for (std::size_t a = 0; a < recording.anchor_ids.size(); ++a) {
+    out << fmt::format("{},{},{}", recording.anchor_ids[a], recording.anchors_m[a].x(), recording.anchors_m[a].y());
+    if (with_z) out << fmt::format(",{}", recording.anchors_m[a].z());
+    out << "\n";
+  }
+  out_file.Commit();
+}
 
-void ParseAnchorsCsv(std::string_view text, const std::string& file, pipeline::Recording& recording) {
+void WriteRanges(const std::string& dir, const pipeline::Recording& recording) {
+  OutputFile out_file(dir + "/ranges.csv");
+  auto& out = out_file.stream();
+  out << "t_s,anchor_id,range_m,amplitude\n";
+  for (const auto& step : recording.steps) {
+    for (const auto& anchor : step.anchors) {
+      const std::string& id = recording.anchor_ids[static_cast<std::size_t>(anchor.anchor_index)];
+      for (const auto& r : anchor.ranges) {
+        // fmt's "{}" is the shortest representation that reads back to the same double.
+        out << fmt::format("{},{},{},{}\n", step.t_s, id, r.range_m, r.amplitude ? fmt::format("{}", *r.amplitude) : "");
+      }
+    }
+  }
+  out_file.Commit();
+}
+
+// tdoa.csv: one row per difference at its step's time, the ids from the indices (as the estimators
+// see them), in the shortest exact form.
+void WriteTdoa(const std::string& dir, const pipeline::Recording& recording) {
+  OutputFile out_file(dir + "/tdoa.csv");
+  auto& out = out_file.stream();
+  out << "t_s,id_i,id_j,tdoa_m\n";
+  for (const auto& step : recording.steps) {
+    for (const auto& m : step.tdoas) {
+      out << fmt::format("{},{},{},{}\n", step.t_s, recording.anchor_ids[static_cast<std::size_t>(m.index_i)],
+                         recording.anchor_ids[static_cast<std::size_t>(m.index_j)], m.tdoa_m);
+    }
+  }
+  out_file.Commit();
+}
+
+// An id (anchor or microphone) -> its row in the anchors or mics file.
+std::map<std::string, int, std::less<>> IndexOfIds(const std::vector<std::string>& ids) {
+  std::map<std::string, int, std::less<>> index;
+  for (std::size_t k = 0; k < ids.size(); ++k) index[ids[k]] = static_cast<int>(k);
+  return index;
+}
+
+// Whether the current row, at t_s, opens a new step: rows with the same t_s share one step, and
+// t_s may not decrease (the rows of one step are consecutive).
+bool OpensStep(const CsvReader& csv, double t_s, const std::vector<pipeline::RecordedStep>& steps) {
+  if (steps.empty() || t_s > steps.back().t_s) return true;
+  if (t_s < steps.back().t_s) {
+    csv.Fail("t_s", fmt::format("time goes backwards (the previous row has t_s = {})", steps.back().t_s));
+  }
+  return false;
+}
+
+// anchors.csv; a non-empty `z_required_by` makes the z_m column required and says why.
+void ParseAnchors(std::string_view text, const std::string& file, const std::string& z_required_by,
+                  pipeline::Recording& recording) {
   CsvReader csv(text, file, {{"anchor_id"}, {"x_m"}, {"y_m"}, {"z_m", false}});
+  if (!z_required_by.empty() && !csv.Has("z_m")) csv.FailRow("the header lacks the column 'z_m', " + z_required_by);
   recording.anchor_ids.clear();
   recording.anchors_m.clear();
   recording.anchors_have_z = csv.Has("z_m");
@@ -74,10 +139,15 @@ void ParseAnchorsCsv(std::string_view text, const std::string& file, pipeline::R
   if (recording.anchor_ids.empty()) throw InputError(file + ": no anchors (expected at least one row after the header)");
 }
 
+}  // namespace
+
+void ParseAnchorsCsv(std::string_view text, const std::string& file, pipeline::Recording& recording) {
+  ParseAnchors(text, file, "", recording);
+}
+
 void ParseRangesCsv(std::string_view text, const std::string& file, pipeline::Recording& recording) {
   CsvReader csv(text, file, {{"t_s"}, {"anchor_id"}, {"range_m"}, {"amplitude", false}});
-  std::map<std::string, int, std::less<>> anchor_index;
-  for (std::size_t a = 0; a < recording.anchor_ids.size(); ++a) anchor_index[recording.anchor_ids[a]] = static_cast<int>(a);
+  const auto anchor_index = IndexOfIds(recording.anchor_ids);
   recording.steps.clear();
   while (csv.Next()) {
     const double t_s = csv.Number("t_s");
@@ -91,7 +161,7 @@ void ParseRangesCsv(std::string_view text, const std::string& file, pipeline::Re
       m.amplitude = csv.Number("amplitude");
       if (*m.amplitude < 0.0) csv.Fail("amplitude", "an amplitude magnitude must be >= 0");
     }
-    if (recording.steps.empty() || t_s > recording.steps.back().t_s) {
+    if (OpensStep(csv, t_s, recording.steps)) {
       pipeline::RecordedStep step;
       step.t_s = t_s;
       for (std::size_t a = 0; a < recording.anchor_ids.size(); ++a) {
@@ -100,8 +170,6 @@ void ParseRangesCsv(std::string_view text, const std::string& file, pipeline::Re
         step.anchors.push_back(std::move(set));
       }
       recording.steps.push_back(std::move(step));
-    } else if (t_s < recording.steps.back().t_s) {
-      csv.Fail("t_s", fmt::format("time goes backwards (the previous row has t_s = {})", recording.steps.back().t_s));
     }
     recording.steps.back().anchors[static_cast<std::size_t>(it->second)].ranges.push_back(m);
   }
@@ -128,15 +196,14 @@ void ParseMicsCsv(std::string_view text, const std::string& file, pipeline::Reco
 
 void ParseToaCsv(std::string_view text, const std::string& file, pipeline::Recording& recording) {
   CsvReader csv(text, file, {{"t_s"}, {"receiver_id"}, {"toa_s"}});
-  std::map<std::string, int, std::less<>> receiver_index;
-  for (std::size_t m = 0; m < recording.anchor_ids.size(); ++m) receiver_index[recording.anchor_ids[m]] = static_cast<int>(m);
+  const auto receiver_index = IndexOfIds(recording.anchor_ids);
   recording.steps.clear();
   while (csv.Next()) {
     const double t_s = csv.Number("t_s");
     const auto it = receiver_index.find(csv.Field("receiver_id"));
     if (it == receiver_index.end()) csv.Fail("receiver_id", "unknown microphone (not in the mics file)");
     const double toa_s = csv.Number("toa_s");
-    if (recording.steps.empty() || t_s > recording.steps.back().t_s) {
+    if (OpensStep(csv, t_s, recording.steps)) {
       pipeline::RecordedStep step;
       step.t_s = t_s;
       for (std::size_t m = 0; m < recording.anchor_ids.size(); ++m) {
@@ -147,12 +214,53 @@ void ParseToaCsv(std::string_view text, const std::string& file, pipeline::Recor
         step.toas.push_back(std::move(stamps));
       }
       recording.steps.push_back(std::move(step));
-    } else if (t_s < recording.steps.back().t_s) {
-      csv.Fail("t_s", fmt::format("time goes backwards (the previous row has t_s = {})", recording.steps.back().t_s));
     }
     recording.steps.back().toas[static_cast<std::size_t>(it->second)].toa_s.push_back(toa_s);
   }
   if (recording.steps.empty()) throw InputError(file + ": no stamps (expected at least one row after the header)");
+}
+
+void ParseTdoaCsv(std::string_view text, const std::string& file, pipeline::Recording& recording) {
+  // A caller's mistake rather than the file's, but the fuzzer and the scenario reader reach it
+  // with any anchors, so it is an InputError like the rest.
+  if (recording.toa_stamps) {
+    throw InputError(file + ": the receivers are the microphones of a recording of stamps; "
+                            "a TDOA recording takes anchors.csv");
+  }
+  if (!recording.anchors_have_z) {
+    throw InputError(file + ": the anchors have no z_m column, but a TDOA recording is 3-D "
+                            "(give the anchors file a z_m column)");
+  }
+  CsvReader csv(text, file, {{"t_s"}, {"id_i"}, {"id_j"}, {"tdoa_m"}});
+  const auto anchor_index = IndexOfIds(recording.anchor_ids);
+  const auto index_of = [&](const std::string& column) {
+    const auto it = anchor_index.find(csv.Field(column));
+    if (it == anchor_index.end()) csv.Fail(column, "unknown anchor (not in the anchors file)");
+    return it->second;
+  };
+  recording.tdoa = true;
+  recording.steps.clear();
+  while (csv.Next()) {
+    core::TdoaMeasurement m;
+    m.t_s = csv.Number("t_s");
+    m.index_i = index_of("id_i");
+    m.index_j = index_of("id_j");
+    if (m.index_i == m.index_j) csv.Fail("id_j", "the same anchor as id_i (a time difference needs two anchors)");
+    m.id_i = recording.anchor_ids[static_cast<std::size_t>(m.index_i)];
+    m.id_j = recording.anchor_ids[static_cast<std::size_t>(m.index_j)];
+    // Finite, of any size and sign: |tdoa_m| beyond the baseline |a_i - a_j| is an outlier the
+    // estimator must handle, not a malformed row.
+    m.tdoa_m = csv.Number("tdoa_m");
+    if (OpensStep(csv, m.t_s, recording.steps)) {
+      pipeline::RecordedStep step;
+      step.t_s = m.t_s;
+      recording.steps.push_back(std::move(step));
+    }
+    recording.steps.back().tdoas.push_back(std::move(m));
+  }
+  if (recording.steps.empty()) {
+    throw InputError(file + ": no time differences (expected at least one row after the header)");
+  }
 }
 
 void ParseTruthCsv(std::string_view text, const std::string& file, pipeline::Recording& recording) {
@@ -172,8 +280,22 @@ void ParseTruthCsv(std::string_view text, const std::string& file, pipeline::Rec
 
 pipeline::Recording LoadRecording(const RecordingFiles& files) {
   pipeline::Recording recording;
-  const std::string& data_file = files.toa_stamps() ? files.toa : files.ranges;
-  if (files.toa_stamps()) {
+  const std::string& data_file = files.pairwise_tdoa() ? files.tdoa : files.toa_stamps() ? files.toa : files.ranges;
+  if (files.pairwise_tdoa()) {
+    std::string also;
+    for (const auto& [key, path] :
+         {std::pair{"ranges", &files.ranges}, std::pair{"mics", &files.mics}, std::pair{"toa", &files.toa}}) {
+      if (!path->empty()) also += fmt::format("{}{} {}", also.empty() ? "" : ", ", key, *path);
+    }
+    if (!also.empty()) {
+      throw InputError(fmt::format("{}: a recording has either tdoa (pairwise time differences), ranges, or mics and toa, "
+                                   "not several (also given: {})",
+                                   files.tdoa, also));
+    }
+    ParseAnchors(ReadFile(files.anchors), files.anchors, "which a TDOA recording needs (its anchors are 3-D)",
+                 recording);
+    ParseTdoaCsv(ReadFile(files.tdoa), files.tdoa, recording);
+  } else if (files.toa_stamps()) {
     ParseMicsCsv(ReadFile(files.mics), files.mics, recording);
     ParseToaCsv(ReadFile(files.toa), files.toa, recording);
   } else {
@@ -201,33 +323,12 @@ void WriteRecording(const std::string& dir, const pipeline::Recording& recording
   if (recording.toa_stamps) {
     WriteStamps(dir, recording);
   } else {
-    const std::string path = dir + "/anchors.csv";
-    OutputFile out_file(path);
-    auto& out = out_file.stream();
-    const bool with_z = recording.anchors_have_z;
-    out << (with_z ? "anchor_id,x_m,y_m,z_m\n" : "anchor_id,x_m,y_m\n");
-    for (std::size_t a = 0; a < recording.anchor_ids.size(); ++a) {
-      out << fmt::format("{},{},{}", recording.anchor_ids[a], recording.anchors_m[a].x(), recording.anchors_m[a].y());
-      if (with_z) out << fmt::format(",{}", recording.anchors_m[a].z());
-      out << "\n";
+    WriteAnchors(dir, recording);
+    if (recording.tdoa) {
+      WriteTdoa(dir, recording);
+    } else {
+      WriteRanges(dir, recording);
     }
-    out_file.Commit();
-  }
-  if (!recording.toa_stamps) {
-    const std::string path = dir + "/ranges.csv";
-    OutputFile out_file(path);
-    auto& out = out_file.stream();
-    out << "t_s,anchor_id,range_m,amplitude\n";
-    for (const auto& step : recording.steps) {
-      for (const auto& anchor : step.anchors) {
-        const std::string& id = recording.anchor_ids[static_cast<std::size_t>(anchor.anchor_index)];
-        for (const auto& r : anchor.ranges) {
-          // fmt's "{}" is the shortest representation that reads back to the same double.
-          out << fmt::format("{},{},{},{}\n", step.t_s, id, r.range_m, r.amplitude ? fmt::format("{}", *r.amplitude) : "");
-        }
-      }
-    }
-    out_file.Commit();
   }
   if (recording.has_truth()) {
     const std::string path = dir + "/truth.csv";

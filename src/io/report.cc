@@ -41,6 +41,15 @@ json GroupJson(const GroupSummary& g, const std::string& bound) {
   j["failure_rate_1m"] = g.has_truth ? json(g.failure_rate_1m) : json(nullptr);
   j["failure_rate_2m"] = g.has_truth ? json(g.failure_rate_2m) : json(nullptr);
   j["no_fix_steps"] = g.no_fix_steps;
+  // 3-D methods: the height error; methods that compute DOPs: their distribution (a DOP may be
+  // infinite: JSON null).
+  if (g.height_error) j["height_error_m"] = ErrorJson(*g.height_error);
+  const auto dop_json = [](const pipeline::DopStats& d) {
+    const auto finite = [](double v) { return std::isfinite(v) ? json(v) : json(nullptr); };
+    return json{{"count", d.count}, {"p50", finite(d.p50)}, {"max", finite(d.max)}, {"rms", finite(d.rms)}};
+  };
+  if (g.hdop) j["hdop"] = dop_json(*g.hdop);
+  if (g.vdop) j["vdop"] = dop_json(*g.vdop);
   j["final_error_m"] = g.has_truth ? json{{"mean", g.final_error_mean_m}, {"p90", g.final_error_p90_m}} : json(nullptr);
   if (g.bound_mean_m) {
     j["peb_m"] = {{"mean", *g.bound_mean_m}, {"p50", *g.bound_p50_m}, {"rms", *g.bound_rms_m}, {"kind", bound},

@@ -81,6 +81,7 @@ std::optional<SourceStep> AcousticSource::Next() {
     record.receiver_id = e.anchors[m].id;
     record.receiver_index = static_cast<int>(m);
     for (const auto& s : emission.stamps[m]) record.toa_s.push_back(s.toa_s);
+    if (e.acoustic.emission_time_known) record.emission_s = t_emit_s;
     step.epoch.toas.push_back(std::move(record));
   }
   // The inertial input since the previous emission (on the trajectory's time axis).

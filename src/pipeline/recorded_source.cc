@@ -17,6 +17,24 @@ RecordedSource::RecordedSource(const Recording& recording, double epoch_window_s
     }
     return;
   }
+  if (recording.tdoa) {
+    // One epoch per time stamp, the differences in file order: a UWB TDOA system reports one
+    // pair per packet at up to a few hundred Hz, and the filter updates with each as it comes
+    // (crazyflie's kalman_core), so the window does not merge them. The time and ids are set
+    // from the step and the indices, as for range sets.
+    for (const auto& step : recording.steps) {
+      core::Epoch epoch;
+      epoch.t_s = step.t_s;
+      epoch.tdoas = step.tdoas;
+      for (auto& m : epoch.tdoas) {
+        m.t_s = step.t_s;
+        m.id_i = recording.anchor_ids[static_cast<std::size_t>(m.index_i)];
+        m.id_j = recording.anchor_ids[static_cast<std::size_t>(m.index_j)];
+      }
+      epochs_.push_back(std::move(epoch));
+    }
+    return;
+  }
   core::EpochAssembler assembler(epoch_window_s);
   for (const auto& step : recording.steps) {
     for (const auto& anchor : step.anchors) {

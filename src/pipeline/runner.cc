@@ -226,6 +226,11 @@ RunRecord RunOne(const VariantContext& vc, int variant, int group, int run, cons
       s.estimate_m = out.agents[a].position_m;
       s.covariance_m2 = out.agents[a].covariance_m2;
       if (s.truth_m) s.error_m = EstimateError(out.agents[a], *s.truth_m);
+      if (s.truth_m && out.agents[a].covariance_m2(2, 2) != 0.0) {
+        s.height_error_m = std::abs(out.agents[a].position_m.z() - s.truth_m->z());
+      }
+      s.hdop = out.hdop;
+      s.vdop = out.vdop;
       if (bound != nullptr) {
         const auto k = static_cast<std::size_t>(epoch_index + 1);
         if (k < bound->size() && a < (*bound)[k].size()) s.bound_m = (*bound)[k][a];

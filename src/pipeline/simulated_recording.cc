@@ -30,7 +30,7 @@ Recording SimulateStamps(const Experiment& experiment, int trajectory, int run) 
     }
     const auto& toas = step->epoch.toas;
     if (std::any_of(toas.begin(), toas.end(), [](const auto& r) { return !r.toa_s.empty(); })) {
-      recording.steps.push_back({t_s, {}, toas});
+      recording.steps.push_back({t_s, {}, toas, {}});
     }
   }
   return recording;
@@ -54,7 +54,7 @@ Recording SimulateRecording(const Experiment& experiment, int trajectory, int ru
     recording.truth.push_back({step->epoch.t_s, *step->truth_m.front()});
     const auto& sets = step->epoch.range_sets;
     if (std::any_of(sets.begin(), sets.end(), [](const auto& s) { return !s.ranges.empty(); })) {
-      recording.steps.push_back({step->epoch.t_s, sets, {}});
+      recording.steps.push_back({step->epoch.t_s, sets, {}, {}});
     }
   }
   return recording;

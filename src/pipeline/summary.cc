@@ -57,6 +57,16 @@ std::optional<MapSummary> SummarizeMaps(std::span<const RunRecord* const> runs) 
   return map;
 }
 
+std::optional<DopStats> SummarizeDops(const std::vector<double>& dops) {
+  if (dops.empty()) return std::nullopt;
+  DopStats s;
+  s.count = dops.size();
+  s.p50 = eval::Percentile(dops, 50.0);
+  s.max = *std::max_element(dops.begin(), dops.end());
+  s.rms = std::sqrt(std::inner_product(dops.begin(), dops.end(), dops.begin(), 0.0) / static_cast<double>(dops.size()));
+  return s;
+}
+
 }  // namespace
 
 std::string OrderName(int order) { return order == 0 ? "los" : "order" + std::to_string(order); }
@@ -66,6 +76,7 @@ GroupSummary SummarizeRuns(const std::string& name, std::span<const RunRecord* c
   g.name = name;
   g.runs = static_cast<int>(runs.size());
   std::vector<double> errors, bounds, finals, relative, bias_finals, tracked_errors, tracked_bounds;
+  std::vector<double> height_errors, hdops, vdops;
   double associations = 0.0, expected = 0.0, wall_rms = 0.0;
   int failures_1m = 0, failures_2m = 0;
   int epochs = 0, wall_runs = 0;
@@ -102,6 +113,9 @@ GroupSummary SummarizeRuns(const std::string& name, std::span<const RunRecord* c
           if (!diverged) tracked_errors.push_back(*s.error_m);
         }
         if (s.relative_error_m) relative.push_back(*s.relative_error_m);
+        if (s.height_error_m) height_errors.push_back(*s.height_error_m);
+        if (s.hdop) hdops.push_back(*s.hdop);
+        if (s.vdop) vdops.push_back(*s.vdop);
         if (s.bound_m) {
           bounds.push_back(*s.bound_m);
           bound_sum[k] += *s.bound_m;
@@ -128,6 +142,9 @@ GroupSummary SummarizeRuns(const std::string& name, std::span<const RunRecord* c
     }
   }
   g.error = eval::ComputeErrorStats(errors);
+  if (!height_errors.empty()) g.height_error = eval::ComputeErrorStats(height_errors);
+  g.hdop = SummarizeDops(hdops);
+  g.vdop = SummarizeDops(vdops);
   if (!errors.empty()) {
     g.failure_rate_1m = static_cast<double>(failures_1m) / static_cast<double>(errors.size());
     g.failure_rate_2m = static_cast<double>(failures_2m) / static_cast<double>(errors.size());

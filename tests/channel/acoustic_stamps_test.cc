@@ -48,7 +48,8 @@ TEST(AcousticStampOptionsDescriptor, AcceptsTheDefaultsAndDescribesEveryMemberBu
       AcousticStampOptionsDescriptor(),
       {"temperature_c", "max_order", "stamp_sigma_s", "heavy_tail_fraction", "heavy_tail_scale",
        "detection_probability", "half_detection_range_m", "max_range_m", "false_alarm_rate", "nlos_fraction",
-       "nlos_bias_min_s", "nlos_bias_max_s", "body_radius_m", "body_offset_m", "body_height_m", "clock_drift_ppm"});
+       "nlos_bias_min_s", "nlos_bias_max_s", "body_radius_m", "body_offset_m", "body_height_m", "clock_drift_ppm",
+       "emission_time_known"});
   EXPECT_TRUE(Validate(AcousticStampOptions{}).empty());
 }
 

@@ -5,6 +5,8 @@
 // negative or NaN range) and by docs/recorded_data.md throws an InputError naming file and line.
 // Recorded acoustic stamps (mics.csv, toa.csv, issue 26 item 9): the same for one step per
 // emission with one ToaStamps record per microphone, as the acoustic simulator makes them.
+// Recorded pairwise TDOA (anchors.csv with z_m, tdoa.csv, issue 26 item 9): rows of one time form
+// one step and one epoch, outliers are kept, and each bad row is named by file, line and column.
 #include "mirage/io/recorded_data.h"
 
 #include <unistd.h>
@@ -13,6 +15,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -399,6 +402,232 @@ TEST_F(RecordedFiles, TruthMustCoverEveryEmission) {
   EXPECT_NE(message.find("truth.csv: covers t_s in [0, 1] s, but " + files.toa + " has a step at t_s = 2 s"),
             std::string::npos)
       << message;
+}
+
+// ---- Pairwise TDOA: anchors.csv (3-D), tdoa.csv ----
+
+const char* const kAnchors3d = "anchor_id,x_m,y_m,z_m\nA1,0,0,0.15\nA2,4,0,2.4\nA3,4,4,0.15\n";
+
+pipeline::Recording WithAnchors3d() {
+  pipeline::Recording r;
+  ParseAnchorsCsv(kAnchors3d, "anchors.csv", r);
+  return r;
+}
+
+TEST(RecordedTdoa, GroupsRowsWithOneTimeIntoOneStepInFileOrder) {
+  auto r = WithAnchors3d();
+  // Columns in another order; two pairs at t = 0, one at t = 0.0125 whose 30.5 m is far beyond
+  // any baseline (an outlier, kept: rejecting it is the estimator's job).
+  ParseTdoaCsv("id_j,tdoa_m,t_s,id_i\nA2,0.25,0,A1\nA1,-1.5,0,A3\n\nA3,30.5,0.0125,A2\n", "tdoa.csv", r);
+  EXPECT_TRUE(r.tdoa);
+  EXPECT_FALSE(r.toa_stamps);
+  ASSERT_EQ(r.steps.size(), 2u);
+  const auto& first = r.steps[0];
+  EXPECT_EQ(first.t_s, 0.0);
+  EXPECT_TRUE(first.anchors.empty());
+  EXPECT_TRUE(first.toas.empty());
+  ASSERT_EQ(first.tdoas.size(), 2u);
+  EXPECT_EQ(first.tdoas[0].id_i, "A1");
+  EXPECT_EQ(first.tdoas[0].id_j, "A2");
+  EXPECT_EQ(first.tdoas[0].index_i, 0);
+  EXPECT_EQ(first.tdoas[0].index_j, 1);
+  EXPECT_EQ(first.tdoas[0].tdoa_m, 0.25);
+  EXPECT_EQ(first.tdoas[1].index_i, 2);
+  EXPECT_EQ(first.tdoas[1].index_j, 0);
+  EXPECT_EQ(first.tdoas[1].tdoa_m, -1.5);
+  ASSERT_EQ(r.steps[1].tdoas.size(), 1u);
+  EXPECT_EQ(r.steps[1].t_s, 0.0125);
+  EXPECT_EQ(r.steps[1].tdoas[0].t_s, 0.0125);
+  EXPECT_EQ(r.steps[1].tdoas[0].index_i, 1);
+  EXPECT_EQ(r.steps[1].tdoas[0].index_j, 2);
+  EXPECT_EQ(r.steps[1].tdoas[0].tdoa_m, 30.5);
+}
+
+TEST(RecordedTdoa, ReplaysOneEpochPerTimeWithItsDifferencesWhateverTheEpochWindow) {
+  auto r = WithAnchors3d();
+  ParseTdoaCsv("t_s,id_i,id_j,tdoa_m\n0.5,A1,A2,0.1\n0.5,A2,A3,0.2\n0.51,A3,A1,0.3\n", "tdoa.csv", r);
+  pipeline::RecordedSource source(r, 1.0);  // a window that would merge both range steps
+  const auto first = source.Next();
+  ASSERT_TRUE(first.has_value());
+  EXPECT_EQ(first->epoch.t_s, 0.5);
+  EXPECT_TRUE(first->epoch.range_sets.empty());
+  EXPECT_TRUE(first->epoch.toas.empty());
+  ASSERT_EQ(first->epoch.tdoas.size(), 2u);
+  EXPECT_EQ(first->epoch.tdoas[1].t_s, 0.5);
+  EXPECT_EQ(first->epoch.tdoas[1].id_i, "A2");
+  EXPECT_EQ(first->epoch.tdoas[1].id_j, "A3");
+  EXPECT_EQ(first->epoch.tdoas[1].index_i, 1);
+  EXPECT_EQ(first->epoch.tdoas[1].index_j, 2);
+  EXPECT_EQ(first->epoch.tdoas[1].tdoa_m, 0.2);
+  const auto second = source.Next();
+  ASSERT_TRUE(second.has_value());
+  EXPECT_EQ(second->epoch.t_s, 0.51);
+  ASSERT_EQ(second->epoch.tdoas.size(), 1u);
+  EXPECT_EQ(second->epoch.tdoas[0].t_s, 0.51);
+  EXPECT_EQ(second->epoch.tdoas[0].id_i, "A3");
+  EXPECT_EQ(second->epoch.tdoas[0].index_j, 0);
+  EXPECT_EQ(second->epoch.tdoas[0].tdoa_m, 0.3);
+  EXPECT_FALSE(source.Next().has_value());
+  EXPECT_EQ(source.out_of_order(), 0);
+}
+
+class BadTdoa : public ::testing::TestWithParam<BadCase> {};
+
+TEST_P(BadTdoa, NamesFileLineAndColumn) {
+  const BadCase& c = GetParam();
+  auto r = WithAnchors3d();
+  const std::string message = ErrorOf([&] { ParseTdoaCsv(c.text, "tdoa.csv", r); });
+  EXPECT_NE(message.find("tdoa.csv:" + std::to_string(c.line) + ":"), std::string::npos) << message;
+  EXPECT_NE(message.find(c.expect), std::string::npos) << message;
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    RecordedTdoa, BadTdoa,
+    ::testing::Values(
+        BadCase{"unknown_id_i", "t_s,id_i,id_j,tdoa_m\n0,A1,A2,0.1\n0,A9,A2,0.1\n", "id_i 'A9': unknown anchor", 3},
+        BadCase{"unknown_id_j", "t_s,id_i,id_j,tdoa_m\n0,A1,a2,0.1\n", "id_j 'a2': unknown anchor", 2},
+        BadCase{"empty_id", "t_s,id_i,id_j,tdoa_m\n0,,A2,0.1\n", "id_i '': unknown anchor", 2},
+        BadCase{"same_ids", "t_s,id_i,id_j,tdoa_m\n0,A1,A2,0.1\n\n0.01,A3,A3,0\n", "id_j 'A3': the same anchor as id_i",
+                4},
+        BadCase{"text_tdoa", "t_s,id_i,id_j,tdoa_m\n0,A1,A2,0.1m\n", "tdoa_m '0.1m': not a number", 2},
+        BadCase{"nan_tdoa", "t_s,id_i,id_j,tdoa_m\n0,A1,A2,NaN\n", "tdoa_m 'NaN': must be finite", 2},
+        BadCase{"inf_tdoa", "t_s,id_i,id_j,tdoa_m\n0,A1,A2,-inf\n", "tdoa_m '-inf': must be finite", 2},
+        BadCase{"empty_tdoa", "t_s,id_i,id_j,tdoa_m\n0,A1,A2,\n", "tdoa_m '': missing value", 2},
+        BadCase{"time_backwards", "t_s,id_i,id_j,tdoa_m\n0.1,A1,A2,0\n0.2,A1,A2,0\n0.2,A2,A3,0\n0.15,A1,A3,0\n",
+                "t_s '0.15': time goes backwards", 5},
+        BadCase{"missing_field", "t_s,id_i,id_j,tdoa_m\n0,A1,A2,0.1\n0,A1,A2\n", "expected 4 fields", 3},
+        BadCase{"missing_column", "t_s,id_i,id_j\n0,A1,A2\n", "lacks the required column 'tdoa_m'", 1},
+        BadCase{"range_column", "t_s,id_i,id_j,tdoa_m,anchor_id\n", "unknown column 'anchor_id'", 1}),
+    [](const ::testing::TestParamInfo<BadCase>& param_info) { return std::string(param_info.param.name); });
+
+TEST(RecordedTdoa, RejectsAnchorsWithoutHeightAndAnEmptyFile) {
+  auto flat = WithAnchors();  // anchor_id,x_m,y_m
+  const std::string message = ErrorOf([&] { ParseTdoaCsv("t_s,id_i,id_j,tdoa_m\n0,A1,A2,0.1\n", "tdoa.csv", flat); });
+  EXPECT_NE(message.find("tdoa.csv: the anchors have no z_m column"), std::string::npos) << message;
+  auto mics = WithMics();
+  EXPECT_NE(ErrorOf([&] { ParseTdoaCsv("t_s,id_i,id_j,tdoa_m\n0,M1,M2,0.1\n", "tdoa.csv", mics); }).find("tdoa.csv: "),
+            std::string::npos);
+  auto r = WithAnchors3d();
+  EXPECT_NE(ErrorOf([&] { ParseTdoaCsv("t_s,id_i,id_j,tdoa_m\n\n", "tdoa.csv", r); })
+                .find("tdoa.csv: no time differences"),
+            std::string::npos);
+}
+
+TEST_F(RecordedFiles, WriteThenLoadTdoaGivesTheSameDoubles) {
+  pipeline::Recording r = WithAnchors3d();
+  r.anchors_m[1].z() = 1.0 / 3.0;
+  r.tdoa = true;
+  for (int k = 0; k < 4; ++k) {
+    pipeline::RecordedStep step;
+    step.t_s = 0.1 * k + 1.0 / 7.0;
+    for (int n = 0; n <= k % 2; ++n) {  // one pair, then two
+      core::TdoaMeasurement m;
+      m.t_s = step.t_s;
+      m.index_i = (k + n) % 3;
+      m.index_j = (k + n + 1) % 3;
+      m.id_i = r.anchor_ids[static_cast<std::size_t>(m.index_i)];
+      m.id_j = r.anchor_ids[static_cast<std::size_t>(m.index_j)];
+      m.tdoa_m = (n == 0 ? -1.0 : 1.0) * std::sqrt(2.0 + k) + (k == 3 ? 27.0 : 0.0);  // k = 3: an outlier
+      step.tdoas.push_back(m);
+    }
+    r.steps.push_back(step);
+    r.truth.push_back({step.t_s, Vec3(std::exp(1.0), -1.0 / 7.0 * k, 1.3 + 1e-3 / 3.0 * k)});
+  }
+  r.truth_has_z = true;
+  WriteRecording(dir_.string(), r);
+  EXPECT_FALSE(fs::exists(dir_ / "ranges.csv"));
+  EXPECT_FALSE(fs::exists(dir_ / "mics.csv"));
+  RecordingFiles files;
+  files.anchors = (dir_ / "anchors.csv").string();
+  files.tdoa = (dir_ / "tdoa.csv").string();
+  files.truth = (dir_ / "truth.csv").string();
+  const auto back = LoadRecording(files);
+  EXPECT_TRUE(back.tdoa);
+  EXPECT_FALSE(back.toa_stamps);
+  EXPECT_TRUE(back.anchors_have_z);
+  EXPECT_EQ(back.anchor_ids, r.anchor_ids);
+  EXPECT_EQ(back.anchors_m, r.anchors_m);
+  ASSERT_EQ(back.steps.size(), r.steps.size());
+  for (std::size_t k = 0; k < r.steps.size(); ++k) {
+    EXPECT_EQ(back.steps[k].t_s, r.steps[k].t_s);
+    ASSERT_EQ(back.steps[k].tdoas.size(), r.steps[k].tdoas.size()) << k;
+    for (std::size_t n = 0; n < r.steps[k].tdoas.size(); ++n) {
+      const auto& got = back.steps[k].tdoas[n];
+      const auto& want = r.steps[k].tdoas[n];
+      EXPECT_EQ(got.t_s, want.t_s);
+      EXPECT_EQ(got.id_i, want.id_i);
+      EXPECT_EQ(got.id_j, want.id_j);
+      EXPECT_EQ(got.index_i, want.index_i);
+      EXPECT_EQ(got.index_j, want.index_j);
+      EXPECT_EQ(got.tdoa_m, want.tdoa_m) << k << " " << n;
+    }
+    EXPECT_EQ(back.truth[k].position_m, r.truth[k].position_m);
+  }
+}
+
+TEST_F(RecordedFiles, TdoaNeedsAnchorsWithHeight) {
+  RecordingFiles files;
+  files.anchors = Write("anchors.csv", kAnchors);
+  files.tdoa = Write("tdoa.csv", "t_s,id_i,id_j,tdoa_m\n0,A1,A2,0.1\n");
+  const std::string message = ErrorOf([&] { (void)LoadRecording(files); });
+  EXPECT_NE(message.find(files.anchors + ":1: the header lacks the column 'z_m'"), std::string::npos) << message;
+  EXPECT_NE(message.find("TDOA"), std::string::npos) << message;
+}
+
+TEST_F(RecordedFiles, TdoaTogetherWithRangesOrStampsIsAnError) {
+  RecordingFiles files;
+  files.anchors = Write("anchors.csv", kAnchors3d);
+  files.tdoa = Write("tdoa.csv", "t_s,id_i,id_j,tdoa_m\n0,A1,A2,0.1\n");
+  files.ranges = Write("ranges.csv", "t_s,anchor_id,range_m\n0,A1,1\n");
+  std::string message = ErrorOf([&] { (void)LoadRecording(files); });
+  EXPECT_NE(message.find(files.tdoa + ": a recording has either tdoa"), std::string::npos) << message;
+  EXPECT_NE(message.find("also given: ranges " + files.ranges), std::string::npos) << message;
+  files.ranges.clear();
+  files.toa = Write("toa.csv", "t_s,receiver_id,toa_s\n0,A1,0\n");
+  message = ErrorOf([&] { (void)LoadRecording(files); });
+  EXPECT_NE(message.find("also given: toa " + files.toa), std::string::npos) << message;
+}
+
+TEST_F(RecordedFiles, TruthMustCoverEveryTdoaStep) {
+  RecordingFiles files;
+  files.anchors = Write("anchors.csv", kAnchors3d);
+  files.tdoa = Write("tdoa.csv", "t_s,id_i,id_j,tdoa_m\n0,A1,A2,0.1\n2,A1,A2,0.1\n");
+  files.truth = Write("truth.csv", "t_s,x_m,y_m,z_m\n0,1,1,1\n1,1,1,1\n");
+  const std::string message = ErrorOf([&] { (void)LoadRecording(files); });
+  EXPECT_NE(message.find("truth.csv: covers t_s in [0, 1] s, but " + files.tdoa + " has a step at t_s = 2 s"),
+            std::string::npos)
+      << message;
+}
+
+// The fixture the fuzz seeds come from: 8 anchors in 3-D, a tag on a circle, 30 rows with two
+// outliers (+25 m at t = 0.09 s, -18 m at t = 0.19 s). Its differences follow the sign convention
+// tdoa_m = |p - a_j| - |p - a_i| within the 5 cm noise the generator added.
+TEST(RecordedTdoa, LoadsTheExampleRecordingWithTheDocumentedSign) {
+  const std::string dir = std::string(MIRAGE_SOURCE_DIR) + "/tests/io/data/recorded_tdoa/";
+  RecordingFiles files;
+  files.anchors = dir + "anchors.csv";
+  files.tdoa = dir + "tdoa.csv";
+  files.truth = dir + "truth.csv";
+  const auto r = LoadRecording(files);
+  ASSERT_EQ(r.anchor_ids.size(), 8u);
+  std::size_t rows = 0;
+  int outliers = 0;
+  for (const auto& step : r.steps) {
+    const Vec3 p = *r.TruthAt(step.t_s);
+    for (const auto& m : step.tdoas) {
+      ++rows;
+      const double expected_m = (p - r.anchors_m[static_cast<std::size_t>(m.index_j)]).norm() -
+                                (p - r.anchors_m[static_cast<std::size_t>(m.index_i)]).norm();
+      if (std::abs(m.tdoa_m - expected_m) > 10.0) {
+        ++outliers;
+      } else {
+        EXPECT_NEAR(m.tdoa_m, expected_m, 0.25) << m.t_s << " " << m.id_i << " " << m.id_j;
+      }
+    }
+  }
+  EXPECT_EQ(rows, 30u);
+  EXPECT_EQ(outliers, 2);
+  EXPECT_LT(r.steps.size(), rows);  // some times carry two pairs
 }
 
 }  // namespace

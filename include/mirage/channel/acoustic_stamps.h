@@ -76,6 +76,10 @@ struct AcousticStampOptions {
   /// The sender's clock rate error (ppm): emission k leaves at t_0 + k I (1 + ppm 1e-6), so the
   /// interval must be estimated (Eq. 3.39), not assumed.
   double clock_drift_ppm = 0.0;
+  /// The system also knows each emission's true time (a sender synchronised with the
+  /// microphones, or a reference system: the thesis's motion-capture-derived sending time of
+  /// Sec. 8.5): the stamps' records carry it (core::ToaStamps::emission_s). false.
+  bool emission_time_known = false;
   /// Virtual-sender episodes. Not in the descriptor (io/ parses the list); Validate checks the
   /// times, the caller checks that each reflector name exists. When episodes overlap, the first
   /// active one in the list applies.

@@ -21,10 +21,12 @@ struct Epoch {
   std::vector<TwrExchange> twrs;
   std::vector<ImuSample> imus;
   std::vector<PositionIncrement> increments;
+  std::vector<TdoaMeasurement> tdoas;
 
   /// Number of records of all kinds.
   [[nodiscard]] std::size_t size() const {
-    return range_sets.size() + cirs.size() + toas.size() + twrs.size() + imus.size() + increments.size();
+    return range_sets.size() + cirs.size() + toas.size() + twrs.size() + imus.size() + increments.size() +
+           tdoas.size();
   }
   [[nodiscard]] bool empty() const { return size() == 0; }
 };

@@ -51,6 +51,7 @@ class EpochAssembler {
   static std::vector<TwrExchange>& Slot(Epoch& e, const TwrExchange&) { return e.twrs; }
   static std::vector<ImuSample>& Slot(Epoch& e, const ImuSample&) { return e.imus; }
   static std::vector<PositionIncrement>& Slot(Epoch& e, const PositionIncrement&) { return e.increments; }
+  static std::vector<TdoaMeasurement>& Slot(Epoch& e, const TdoaMeasurement&) { return e.tdoas; }
 
   // Keeps each kind in time order (records inside one window may arrive shuffled); equal times
   // keep their arrival order.

@@ -64,6 +64,21 @@ struct ToaStamps {
   std::vector<double> toa_s;  ///< arrival times (s), unlabeled: direct path, echoes, false alarms
   /// The emission these stamps belong to, where the system knows it (an ID symbol).
   std::optional<std::int64_t> emission_sequence;
+  /// The emission's time in the receivers' time base (s), where the system knows it (a sender
+  /// synchronised with the receivers, or a reference system such as motion capture).
+  std::optional<double> emission_s;
+};
+
+/// One time difference of arrival between two receivers (UWB TDOA anchors, microphones), as a
+/// distance: tdoa_m = |p - a_j| - |p - a_i| for the sender at p (the convention of tdoa.csv and of
+/// Bitcraze's Loco Positioning TDOA: positive when the sender is nearer to a_i).
+struct TdoaMeasurement {
+  double t_s = 0.0;  ///< time of the measurement (s)
+  std::string id_i;
+  std::string id_j;
+  int index_i = 0;   ///< index of receiver i in the scenario's receiver list
+  int index_j = 0;
+  double tdoa_m = 0.0;  ///< |p - a_j| - |p - a_i| (m)
 };
 
 /// One two-way-ranging exchange (symmetric double-sided TWR) between two devices, as the raw

@@ -50,6 +50,10 @@ struct StepOutput {
   /// False when the method made no estimate at this epoch (a snapshot solver without a fix): the
   /// agents' estimates repeat the last ones, and the evaluation counts the epoch as a failure.
   bool fixed = true;
+  /// The horizontal and vertical dilution of precision of this epoch's fix (sqrt of the CRLB's
+  /// horizontal / vertical variance over the noise sigma, eval/dop.h), for methods that compute it.
+  std::optional<double> hdop;
+  std::optional<double> vdop;
   std::vector<PathSinr> sinr_estimates;
 };
 

@@ -2,7 +2,9 @@
 // Epochs read from a recording (docs/recorded_data.md): the range sets of each time (anchors.csv,
 // ranges.csv), grouped by the epoch rule (the experiment's epoch window), or one epoch per
 // emission with one ToaStamps record per microphone (mics.csv, toa.csv; the window does not
-// apply), with the truth interpolated at each epoch when the recording has it (truth.csv).
+// apply), or one epoch per time stamp with its pairwise TDOAs (anchors.csv, tdoa.csv; the window
+// does not apply), with the truth interpolated at each epoch when the recording has it
+// (truth.csv).
 #pragma once
 
 #include <optional>
@@ -16,7 +18,7 @@ namespace mirage::pipeline {
 class RecordedSource final : public EpochSource {
  public:
   /// @param epoch_window_s the epoch rule's window (s), >= 0 (0: rows with one time stamp);
-  ///        unused for a recording of stamps.
+  ///        unused for a recording of stamps or of TDOAs.
   RecordedSource(const Recording& recording, double epoch_window_s);
 
   std::optional<SourceStep> Next() override;

@@ -25,6 +25,8 @@ struct RecordedStep {
   /// position), t_s and receiver_id set as the estimator sees them; a microphone without rows
   /// for this emission has no stamps.
   std::vector<core::ToaStamps> toas;
+  /// Pairwise TDOA recordings (tdoa.csv): the rows of this time, in file order.
+  std::vector<core::TdoaMeasurement> tdoas;
 };
 
 /// A true position at one time.
@@ -38,6 +40,9 @@ struct Recording {
   /// The steps carry arrival-time stamps (mics.csv, toa.csv), not range sets; the anchors are
   /// then the microphones.
   bool toa_stamps = false;
+  /// The steps carry pairwise time differences (tdoa.csv), not range sets or stamps; the anchors
+  /// (anchors.csv with a z_m column) are the TDOA receivers.
+  bool tdoa = false;
   std::vector<std::string> anchor_ids;
   std::vector<Vec3> anchors_m;    ///< z is 0 when anchors.csv has no z_m column
   bool anchors_have_z = false;    ///< anchors.csv has a z_m column (always for mics.csv)

@@ -23,6 +23,10 @@ struct TrackStep {
   Vec3 estimate_m = Vec3::Zero();
   Eigen::Matrix3d covariance_m2 = Eigen::Matrix3d::Zero();
   std::optional<double> error_m;  ///< |estimate - truth| (the plane's for planar methods)
+  /// |z estimate - z truth| for a 3-D estimate (z with a non-zero variance); empty for planar ones.
+  std::optional<double> height_error_m;
+  std::optional<double> hdop;  ///< the method's DOPs of this epoch (methods::StepOutput)
+  std::optional<double> vdop;
   std::optional<double> bound_m;  ///< the position error bound at this epoch (simulations only)
   /// Relative to the estimated floor plan (methods that estimate walls): the error after
   /// removing the translation that best explains the walls' estimated offsets.

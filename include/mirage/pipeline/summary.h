@@ -59,6 +59,14 @@ struct HealthSummary {
   double largest_covariance_growth = 1.0;
 };
 
+/// Distribution of a dilution of precision over the epochs that have one.
+struct DopStats {
+  std::size_t count = 0;
+  double p50 = 0.0;
+  double max = 0.0;  ///< may be +infinity (an unidentifiable coordinate)
+  double rms = 0.0;  ///< sqrt(mean DOP^2): sigma times it is the RMS of the per-epoch CRLBs
+};
+
 /// Statistics of a group of runs.
 struct GroupSummary {
   std::string name;
@@ -66,6 +74,10 @@ struct GroupSummary {
   int steps = 0;           ///< epochs, summed over runs and agents
   bool has_truth = true;   ///< false on recorded data without truth: no error statistics
   eval::ErrorStats error;
+  /// |z error| of the epochs with a 3-D estimate and truth; empty when there is none.
+  std::optional<eval::ErrorStats> height_error;
+  std::optional<DopStats> hdop;  ///< empty when no epoch has one
+  std::optional<DopStats> vdop;
   int diverged_runs = 0;   ///< runs with an agent diverged
   /// Fractions of the epochs with truth whose error exceeds 1 m and 2 m, an epoch without a fix
   /// counted as a failure (Bordoy 2020 Sec. 5.3: the failure rate of Fig. 5.5).

@@ -17,6 +17,9 @@ struct PeakPair {
   int los_index = 0;
   int ground_index = 0;
   LosGroundStamps stamps;
+  /// The latest other stamp of the microphone before T_L (-infinity if none): T_L is the first
+  /// arrival after a hypothesis t_0 iff previous_s <= t_0.
+  double previous_s = -std::numeric_limits<double>::infinity();
 };
 
 /// One t_0 candidate and the two pairs that gave it.
@@ -34,15 +37,22 @@ struct Candidate {
 std::vector<PeakPair> PairsOf(const std::vector<double>& stamps_s, double max_delay_s) {
   std::vector<PeakPair> pairs;
   for (std::size_t a = 0; a < stamps_s.size(); ++a) {
+    double previous_s = -std::numeric_limits<double>::infinity();
+    for (const double s : stamps_s) {
+      if (s < stamps_s[a]) previous_s = std::max(previous_s, s);
+    }
     for (std::size_t b = 0; b < stamps_s.size(); ++b) {
       const double delay_s = stamps_s[b] - stamps_s[a];
       if (delay_s > 0.0 && delay_s <= max_delay_s) {
-        pairs.push_back({static_cast<int>(a), static_cast<int>(b), {stamps_s[a], stamps_s[b]}});
+        pairs.push_back({static_cast<int>(a), static_cast<int>(b), {stamps_s[a], stamps_s[b]}, previous_s});
       }
     }
   }
   return pairs;
 }
+
+/// Microphone m's height above the floor (m), from options.mic_heights_m (non-empty).
+double MicHeight(const SendingTimeVoteOptions& options, std::size_t m) { return options.mic_heights_m.at(m); }
 
 double MaxEchoDelay(const SendingTimeVoteOptions& options) { return 2.0 * options.max_sender_height_m / options.speed_mps; }
 
@@ -53,8 +63,8 @@ bool Plausible(const LosGroundStamps& p, double t0_s, const SendingTimeVoteOptio
   if (!(los_rel_s > 0.0) || los_rel_s * options.speed_mps > options.max_range_m) return false;
   const double c2 = options.speed_mps * options.speed_mps;
   // |S_v - M|^2 - |S - M|^2 = 4 h_s h_m.
-  return (ground_rel_s * ground_rel_s - los_rel_s * los_rel_s) * c2 <=
-         4.0 * options.max_sender_height_m * options.max_mic_height_m;
+  const double excess_m2 = (ground_rel_s * ground_rel_s - los_rel_s * los_rel_s) * c2;
+  return excess_m2 <= 4.0 * options.max_sender_height_m * options.max_mic_height_m && excess_m2 >= options.min_excess_m2;
 }
 
 }  // namespace
@@ -92,8 +102,17 @@ std::vector<std::string> Validate(const SendingTimeVoteOptions& options) {
   positive(options.stamp_sigma_s, "stamp_sigma_s");
   positive(options.max_noise_gain, "max_noise_gain");
   positive(options.pile_sigmas, "pile_sigmas");
+  for (const double h : options.mic_heights_m) {
+    if (!(h > 0.0 && std::isfinite(h))) {
+      problems.emplace_back("mic_heights_m must be > 0 and finite");
+      break;
+    }
+  }
   if (!(options.mic_height_spread_m >= 0.0 && std::isfinite(options.mic_height_spread_m))) {
     problems.emplace_back("mic_height_spread_m must be >= 0 and finite");
+  }
+  if (!(options.min_excess_m2 >= 0.0 && std::isfinite(options.min_excess_m2))) {
+    problems.emplace_back("min_excess_m2 must be >= 0 and finite");
   }
   if (!std::isfinite(options.pile_tolerance_s)) problems.emplace_back("pile_tolerance_s must be finite");
   if (options.max_combinations < 1) problems.emplace_back("max_combinations must be >= 1");
@@ -189,16 +208,20 @@ int BestKCluster(const std::vector<std::vector<PeakPair>>& mic_pairs, double t_s
                  const SendingTimeVoteOptions& options, std::vector<int>* chosen, double* cost) {
   const double c2 = options.speed_mps * options.speed_mps;
   // Unequal microphone heights spread K by 4 h_s dh / c^2.
-  const double height_slack_s2 = 4.0 * options.max_sender_height_m * options.mic_height_spread_m / c2;
+  // With the microphones' heights known, K / h_m = 4 h_s / c^2 is shared exactly instead.
+  const bool heights = !options.mic_heights_m.empty();
+  const double height_slack_s2 = heights ? 0.0 : 4.0 * options.max_sender_height_m * options.mic_height_spread_m / c2;
   std::vector<KEntry> entries;
   for (std::size_t m = 0; m < mic_pairs.size(); ++m) {
     for (std::size_t p = 0; p < mic_pairs[m].size(); ++p) {
       const LosGroundStamps& s = mic_pairs[m][p].stamps;
       if (!Plausible(s, t_s, options)) continue;
+      if (options.los_is_first_arrival && mic_pairs[m][p].previous_s > t_s) continue;
       const double los_s = s.los_s - t_s, ground_s = s.ground_s - t_s;
       // dK/dT_r = 2 (T_r - t), dK/dT_L = -2 (T_L - t).
       const double sigma_k_s2 = 2.0 * options.stamp_sigma_s * std::hypot(los_s, ground_s);
-      entries.push_back({ground_s * ground_s - los_s * los_s, options.pile_sigmas * sigma_k_s2 + height_slack_s2,
+      const double scale = heights ? 1.0 / MicHeight(options, m) : 1.0;
+      entries.push_back({scale * (ground_s * ground_s - los_s * los_s), scale * options.pile_sigmas * sigma_k_s2 + height_slack_s2,
                          static_cast<int>(m), static_cast<int>(p)});
     }
   }
@@ -266,7 +289,7 @@ std::optional<std::pair<double, double>> RefineSendingTime(const PairTable& pair
                               (std::pow(s.ground_s - t_s, 2) + std::pow(s.los_s - t_s, 2)));
       Eigen::VectorXd row = Eigen::VectorXd::Zero(emissions + 1);
       row(0) = 2.0 * delay_s;
-      row(col) = 1.0;
+      row(col) = options.mic_heights_m.empty() ? 1.0 : MicHeight(options, m);
       normal += w * row * row.transpose();
       rhs += w * y * row;
     }
@@ -280,38 +303,47 @@ std::optional<std::pair<double, double>> RefineSendingTime(const PairTable& pair
   return std::make_pair(t_s + x(0), std::sqrt(ldlt.solve(e0)(0)));
 }
 
+/// A consensus hypothesis's support.
+struct Score {
+  int redundant = -1;  // inlier microphones beyond two, summed over emissions
+  double cost = 0.0;   // their truncated squared residuals
+  int inliers = 0;
+  [[nodiscard]] bool Beats(const Score& o) const {
+    return redundant > o.redundant || (redundant == o.redundant && cost < o.cost);
+  }
+};
+
+/// The support of hypothesis t_s: per emission the best K cluster of at least three microphones.
+Score ScoreHypothesis(const PairTable& pairs, double t_s, const SendingTimeVoteOptions& options, Selection* chosen) {
+  Score score{0, 0.0, 0};
+  chosen->assign(pairs.size(), {});
+  for (std::size_t e = 0; e < pairs.size(); ++e) {
+    double cost = 0.0;
+    const int count = BestKCluster(pairs[e], t_s, options, &(*chosen)[e], &cost);
+    if (count < 3) {
+      std::fill((*chosen)[e].begin(), (*chosen)[e].end(), -1);
+      continue;
+    }
+    score.redundant += count - 2;
+    score.cost += cost;
+    score.inliers += count;
+  }
+  return score;
+}
+
+/// From hypothesis t_s: cluster, refine t_0 by RefineSendingTime, re-cluster and refine once more.
+/// Returns the final support.
+Score RefineHypothesis(double t_s, const PairTable& pairs, const SendingTimeVoteOptions& options, SendingTimeVote* vote,
+                       Selection* selection);
+
 /// Consensus: every candidate t_0 (deduplicated to one per stamp_sigma_s) is a hypothesis; its
 /// score is, summed over emissions, the microphones beyond two whose (L, r) pairs share K (two
 /// always do, for the hypotheses they generate). The best hypothesis's clusters are the chosen
-/// stamps; t_0 is then refined by RefineSendingTime, re-clustered and refined once more.
+/// stamps; t_0 is then refined (RefineHypothesis).
 void Consensus(std::vector<Candidate> candidates, const PairTable& pairs, const SendingTimeVoteOptions& options,
                SendingTimeVote* vote, Selection* selection) {
   std::sort(candidates.begin(), candidates.end(),
             [](const Candidate& a, const Candidate& b) { return a.t0_s < b.t0_s; });
-  struct Score {
-    int redundant = -1;  // inlier microphones beyond two, summed over emissions
-    double cost = 0.0;   // their truncated squared residuals
-    int inliers = 0;
-    [[nodiscard]] bool Beats(const Score& o) const {
-      return redundant > o.redundant || (redundant == o.redundant && cost < o.cost);
-    }
-  };
-  const auto score_of = [&](double t_s, Selection* chosen) {
-    Score score{0, 0.0, 0};
-    chosen->assign(pairs.size(), {});
-    for (std::size_t e = 0; e < pairs.size(); ++e) {
-      double cost = 0.0;
-      const int count = BestKCluster(pairs[e], t_s, options, &(*chosen)[e], &cost);
-      if (count < 3) {
-        std::fill((*chosen)[e].begin(), (*chosen)[e].end(), -1);
-        continue;
-      }
-      score.redundant += count - 2;
-      score.cost += cost;
-      score.inliers += count;
-    }
-    return score;
-  };
   Score best;
   double best_t_s = candidates.front().t0_s;
   double last_t_s = -std::numeric_limits<double>::infinity();
@@ -319,23 +351,31 @@ void Consensus(std::vector<Candidate> candidates, const PairTable& pairs, const 
   for (const Candidate& c : candidates) {
     if (c.t0_s - last_t_s < options.stamp_sigma_s) continue;
     last_t_s = c.t0_s;
-    const Score score = score_of(c.t0_s, &chosen);
+    const Score score = ScoreHypothesis(pairs, c.t0_s, options, &chosen);
     if (score.Beats(best)) {
       best = score;
       best_t_s = c.t0_s;
     }
   }
-  double t_s = best_t_s;
-  best = score_of(t_s, selection);
-  for (int iteration = 0; iteration < 2; ++iteration) {
+  RefineHypothesis(best_t_s, pairs, options, vote, selection);
+}
+
+Score RefineHypothesis(double t_s, const PairTable& pairs, const SendingTimeVoteOptions& options, SendingTimeVote* vote,
+                       Selection* selection) {
+  Score best = ScoreHypothesis(pairs, t_s, options, selection);
+  // Re-cluster at the refined t_0 until it settles (K hardly depends on t_0, so the search's
+  // hypothesis can be off by ~1 ms; each least-squares step moves it to its clusters' t_0).
+  for (int iteration = 0; iteration < 8; ++iteration) {
     const auto refined = RefineSendingTime(pairs, *selection, t_s, options);
     if (!refined) break;
+    const bool settled = std::abs(refined->first - t_s) < 0.1 * options.stamp_sigma_s;
     Selection again;
-    const Score score = score_of(refined->first, &again);
+    const Score score = ScoreHypothesis(pairs, refined->first, options, &again);
     if (score.redundant < best.redundant) break;  // keep the better-supported hypothesis
     t_s = refined->first;
     *selection = std::move(again);
     best = score;
+    if (settled) break;
   }
   if (const auto final_t = RefineSendingTime(pairs, *selection, t_s, options)) {
     t_s = final_t->first;
@@ -343,23 +383,54 @@ void Consensus(std::vector<Candidate> candidates, const PairTable& pairs, const 
   }
   vote->t0_s = t_s;
   vote->pile_size = best.inliers;
+  return best;
+}
+
+/// Known microphone heights must cover every emission's microphones.
+bool HeightsMatch(std::span<const EmissionStamps> emissions, const SendingTimeVoteOptions& options) {
+  if (options.mic_heights_m.empty()) return true;
+  return std::all_of(emissions.begin(), emissions.end(), [&](const EmissionStamps& e) {
+    return e.mic_stamps_s.size() == options.mic_heights_m.size();
+  });
+}
+
+/// The (L, r) pairs of every microphone of every emission.
+PairTable PairsOfEmissions(std::span<const EmissionStamps> emissions, const SendingTimeVoteOptions& options) {
+  PairTable pairs(emissions.size());
+  for (std::size_t e = 0; e < emissions.size(); ++e) {
+    for (const auto& stamps : emissions[e].mic_stamps_s) pairs[e].push_back(PairsOf(stamps, MaxEchoDelay(options)));
+  }
+  return pairs;
+}
+
+/// The chosen stamps' indices from the selected pairs.
+std::vector<std::vector<MicStampChoice>> ChosenStamps(const PairTable& pairs, const Selection& selection) {
+  std::vector<std::vector<MicStampChoice>> chosen(pairs.size());
+  for (std::size_t e = 0; e < pairs.size(); ++e) {
+    chosen[e].resize(pairs[e].size());
+    for (std::size_t m = 0; m < pairs[e].size(); ++m) {
+      const int p = selection[e][m];
+      if (p < 0) continue;
+      const PeakPair& pair = pairs[e][m][static_cast<std::size_t>(p)];
+      chosen[e][m] = {pair.los_index, pair.ground_index};
+    }
+  }
+  return chosen;
 }
 
 }  // namespace
 
 std::optional<SendingTimeVote> VoteSendingTime(std::span<const EmissionStamps> emissions,
                                                const SendingTimeVoteOptions& options) {
-  if (!Validate(options).empty()) return std::nullopt;
+  if (!Validate(options).empty() || !HeightsMatch(emissions, options)) return std::nullopt;
   const std::size_t combinations = CountVoteCombinations(emissions, options);
   if (combinations > options.max_combinations) return std::nullopt;
-  const double max_delay_s = MaxEchoDelay(options);
 
   // Steps 1-3 of Sec. 8.4 for every 4-tuple.
-  PairTable pairs(emissions.size());
+  const PairTable pairs = PairsOfEmissions(emissions, options);
   std::vector<Candidate> candidates;
   for (std::size_t e = 0; e < emissions.size(); ++e) {
     const auto& mics = emissions[e].mic_stamps_s;
-    for (const auto& stamps : mics) pairs[e].push_back(PairsOf(stamps, max_delay_s));
     for (std::size_t i = 0; i < mics.size(); ++i) {
       for (std::size_t j = i + 1; j < mics.size(); ++j) {
         for (std::size_t pi = 0; pi < pairs[e][i].size(); ++pi) {
@@ -389,16 +460,21 @@ std::optional<SendingTimeVote> VoteSendingTime(std::span<const EmissionStamps> e
   } else {
     Consensus(std::move(candidates), pairs, options, &vote, &selection);
   }
-  vote.chosen.resize(emissions.size());
-  for (std::size_t e = 0; e < emissions.size(); ++e) {
-    vote.chosen[e].resize(pairs[e].size());
-    for (std::size_t m = 0; m < pairs[e].size(); ++m) {
-      const int p = selection[e][m];
-      if (p < 0) continue;
-      const PeakPair& pair = pairs[e][m][static_cast<std::size_t>(p)];
-      vote.chosen[e][m] = {pair.los_index, pair.ground_index};
-    }
+  vote.chosen = ChosenStamps(pairs, selection);
+  return vote;
+}
+
+std::optional<SendingTimeVote> VoteSendingTimeAt(std::span<const EmissionStamps> emissions, double t0_hypothesis_s,
+                                                 const SendingTimeVoteOptions& options) {
+  if (!Validate(options).empty() || !HeightsMatch(emissions, options) || !std::isfinite(t0_hypothesis_s)) {
+    return std::nullopt;
   }
+  const PairTable pairs = PairsOfEmissions(emissions, options);
+  SendingTimeVote vote;
+  Selection selection;
+  const Score score = RefineHypothesis(t0_hypothesis_s, pairs, options, &vote, &selection);
+  if (score.inliers == 0) return std::nullopt;
+  vote.chosen = ChosenStamps(pairs, selection);
   return vote;
 }
 

@@ -56,6 +56,11 @@ AcousticEstimator::AcousticEstimator(const AcousticOptions& options, const World
   los_.tdoa_bound = options_.tdoa_bound_gate;
   los_.tdoa_bound_sigmas = options_.tdoa_bound_sigmas;
   const auto& plan = world_.floor_plan;
+  if (options_.estimator == "ground_echo") {
+    ground_echo_.emplace(mics_m_, plan.floor_z_m(), c_mps_, options_.range_sigma_m, options_.emission_interval_s,
+                         options_.clock_drift_ppm, options_.ground_echo,
+                         std::isfinite(plan.ceiling_z_m()) ? std::optional<double>(plan.ceiling_z_m()) : std::nullopt);
+  }
   if (options_.echo_order > 0 && !plan.walls().empty() && std::isfinite(plan.ceiling_z_m())) {
     reflectors_ = geometry::ReflectorsFromPlan(plan);
   }
@@ -475,9 +480,29 @@ StepOutput AcousticEstimator::Combinatorial(const core::Epoch& epoch) {
   return out;
 }
 
+StepOutput AcousticEstimator::GroundEcho(const core::Epoch& epoch) {
+  StepOutput out;
+  out.expected = 2 * static_cast<int>(world_.anchors.size());  // a LOS and a floor echo per microphone
+  const GroundEchoFix fix = ground_echo_->Process(epoch);
+  if (!fix.found) {
+    out.agents.push_back(last_);  // no fix: the last one stands, the epoch counts as a failure
+    out.fixed = false;
+    return out;
+  }
+  out.associations = fix.los_rows + fix.echo_rows;
+  out.hdop = fix.hdop;
+  out.vdop = fix.vdop;
+  AgentEstimate estimate;
+  estimate.position_m = fix.position_m;
+  estimate.covariance_m2 = fix.covariance_m2;
+  out.agents.push_back(estimate);
+  return out;
+}
+
 StepOutput AcousticEstimator::Process(const core::Epoch& epoch) {
   StepOutput out = options_.estimator == "nlls"            ? Snapshot(epoch)
                    : options_.estimator == "combinatorial" ? Combinatorial(epoch)
+                   : options_.estimator == "ground_echo"   ? GroundEcho(epoch)
                                                            : Filter(epoch);
   last_ = out.agents.front();
   return out;

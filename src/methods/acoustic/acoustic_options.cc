@@ -17,8 +17,9 @@ const core::OptionsDescriptor<AcousticOptions>& AcousticOptionsDescriptor() {
               .doc = "rekf: the robust EKF, Hampel-weighted reweighting of the prior and the stamps (Bordoy 2020 Eq. "
                      "5.24-5.30); ekf: the same filter with every weight 1; nlls: a Levenberg-Marquardt fix per "
                      "emission from random starts with every microphone's stamp; combinatorial: the 8-step LOS identification "
-                     "per emission (Sec. 5.1), planar mode only."},
-             {"rekf", "ekf", "nlls", "combinatorial"});
+                     "per emission (Sec. 5.1), planar mode only; ground_echo: a 3-D fix per emission from the line of sight and "
+                     "the floor echo at each microphone (ch. 8), mode 3d."},
+             {"rekf", "ekf", "nlls", "combinatorial", "ground_echo"});
     d.Choice(&O::mode,
              {.key = "mode",
               .doc = "planar: x, y at the world's known sender height (ch. 5, errors in 2-D); 3d: the height too."},
@@ -102,6 +103,11 @@ const core::OptionsDescriptor<AcousticOptions>& AcousticOptionsDescriptor() {
                .doc = "The combinatorial estimator's switches; its stamp sigma and TDOA bound are the method's "
                       "range_sigma_m, tdoa_bound_gate and tdoa_bound_sigmas."},
               LosIdentificationSectionDescriptor());
+    d.Section(&O::ground_echo,
+              {.key = "ground_echo",
+               .doc = "The ground_echo estimator's options; its stamp sigma, emission interval and clock drift are "
+                      "the method's."},
+              GroundEchoOptionsDescriptor());
     d.Integer(&O::nlls_starts, {.key = "nlls_starts",
                                 .range = ValueRange::Closed(1.0, 1000.0),
                                 .doc = "Random starts of the snapshot NLLS per emission. 10."});
@@ -123,6 +129,9 @@ std::vector<std::string> Validate(const AcousticOptions& options) {
   if (options.estimator == "combinatorial" && options.mode != "planar") {
     problems.push_back("estimator: combinatorial needs mode planar (the closed form of Sec. 5.1 step 2 takes the "
                        "sender's height as known), got mode " + options.mode);
+  }
+  if (options.estimator == "ground_echo" && options.mode != "3d") {
+    problems.push_back("estimator: ground_echo needs mode 3d (its point is the height), got mode " + options.mode);
   }
   return problems;
 }

@@ -246,6 +246,96 @@ TEST(VoteSendingTime, ACeilingParallelToTheMicsKeepsT0ButCanStealTheGroundLabel)
   EXPECT_NEAR(vote->t0_s, sim.t0_s, 1e-9);
 }
 
+TEST(VoteSendingTime, TheExcessBoundRejectsTheCeilingPairs) {
+  // With the ceiling at 5.2 m, mics at 4.85 m and senders at 1.35-1.45 m (> 5.2 - 4.85), a
+  // floor pair's excess 4 h_s h_m exceeds 4 (C - h_m) h_m and a (LOS, ceiling) pair's stays below
+  // it. The (ceiling, floor) pairs pass the bound (excess 4 C (h_m + h_s - C)) and are as
+  // consistent: the first-arrival rule removes them (without it half the labels go to them).
+  core::Rng rng(15);
+  SimOptions sim;
+  sim.ceiling = true;
+  const Synthetic s = Simulate(NineMics(true), Senders(), sim, rng);
+  SendingTimeVoteOptions options;
+  options.min_excess_m2 = 4.0 * (5.2 - 4.85) * 4.85;
+  options.los_is_first_arrival = true;
+
+  const auto vote = VoteSendingTime(s.emissions, options);
+
+  ASSERT_TRUE(vote.has_value());
+  EXPECT_NEAR(vote->t0_s, sim.t0_s, 1e-9);
+  int total = 0;
+  EXPECT_EQ(CorrectLabels(s, *vote, &total), total);
+  EXPECT_EQ(total, 54);
+}
+
+TEST(VoteSendingTime, KnownMicHeightsRemoveTheSpreadBias) {
+  core::Rng rng(12);
+  SimOptions sim;
+  const std::vector<Vec3> mics = NineMics(false);
+  const Synthetic s = Simulate(mics, Senders(), sim, rng);
+  SendingTimeVoteOptions options;
+  for (const Vec3& m : mics) options.mic_heights_m.push_back(m.z());
+
+  const auto vote = VoteSendingTime(s.emissions, options);
+
+  ASSERT_TRUE(vote.has_value());
+  EXPECT_NEAR(vote->t0_s, sim.t0_s, 1e-9);  // exact: K = 4 h_s h_m / c^2 per microphone
+  int total = 0;
+  EXPECT_EQ(CorrectLabels(s, *vote, &total), total);
+  // Heights that do not match the microphones are refused.
+  options.mic_heights_m.pop_back();
+  EXPECT_FALSE(VoteSendingTime(s.emissions, options).has_value());
+  options.mic_heights_m.push_back(-1.0);
+  EXPECT_FALSE(Validate(options).empty());
+}
+
+TEST(VoteSendingTimeAt, FromAHypothesisNearT0FindsTheExactT0AndLabels) {
+  core::Rng rng(16);
+  SimOptions sim;
+  sim.walls = true;
+  const Synthetic s = Simulate(NineMics(true), Senders(), sim, rng);
+  for (const double offset_s : {0.0, 2e-4, -5e-4}) {
+    const auto vote = VoteSendingTimeAt(s.emissions, sim.t0_s + offset_s, SendingTimeVoteOptions{});
+    ASSERT_TRUE(vote.has_value()) << offset_s;
+    EXPECT_NEAR(vote->t0_s, sim.t0_s, 1e-9) << offset_s;
+    int total = 0;
+    EXPECT_EQ(CorrectLabels(s, *vote, &total), total) << offset_s;
+  }
+  // A hypothesis after every stamp has no plausible pair.
+  EXPECT_FALSE(VoteSendingTimeAt(s.emissions, sim.t0_s + 1.0, SendingTimeVoteOptions{}).has_value());
+}
+
+TEST(VoteSendingTime, FirstArrivalRuleKeepsTheLosAmongWallImagePairs) {
+  // Wall echoes with their own floor echoes (images in vertical walls share t_0 and K): without
+  // the rule a microphone may pair a wall echo with its floor echo; with it, the LOS is the first
+  // arrival after t_0.
+  core::Rng rng(17);
+  const std::vector<Vec3> mics = NineMics(true);
+  std::vector<EmissionStamps> emissions;
+  const double t0_s = 0.02;
+  for (const Vec3& sender : Senders()) {
+    EmissionStamps e;
+    const Vec3 image(-2.0 - sender.x(), sender.y(), sender.z());  // the wall x = -1
+    for (const Vec3& mic : mics) {
+      const auto arrival = [&](const Vec3& p) { return t0_s + (p - mic).norm() / kC; };
+      const auto floor = [](const Vec3& p) { return Vec3(p.x(), p.y(), -p.z()); };
+      e.mic_stamps_s.push_back({arrival(sender), arrival(floor(sender)), arrival(image), arrival(floor(image))});
+    }
+    emissions.push_back(e);
+  }
+  SendingTimeVoteOptions options;
+  options.los_is_first_arrival = true;
+  const auto vote = VoteSendingTime(emissions, options);
+  ASSERT_TRUE(vote.has_value());
+  EXPECT_NEAR(vote->t0_s, t0_s, 1e-9);
+  for (const auto& emission : vote->chosen) {
+    for (const auto& c : emission) {
+      EXPECT_EQ(c.los_index, 0);
+      EXPECT_EQ(c.ground_index, 1);
+    }
+  }
+}
+
 TEST(VoteSendingTime, RefusesMoreCombinationsThanAllowedAndInvalidOptions) {
   core::Rng rng(14);
   SimOptions sim;

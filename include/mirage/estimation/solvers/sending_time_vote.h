@@ -31,7 +31,11 @@
 //    2 d_m t_0 + K_e = d_m (T_r,m + T_L,m) over the inliers (linear in t_0 and one K_e per
 //    emission; with two microphones it is Eq. 8.77), re-clustered and re-solved once.
 //    Hypothesis scoring costs O(H E P_e log P_e) for H <= candidates hypotheses, E emissions,
-//    P_e pairs per emission.
+//    P_e pairs per emission. The refinement re-clusters until t_0 moves by less than a tenth of
+//    a stamp sigma (K hardly depends on t_0, so the search's hypothesis may be ~1 ms off).
+//  - Options beyond the thesis, for a known geometry (methods/acoustic/ground_echo_fix.h sets
+//    them): the microphones' heights (exact K per microphone), a lower bound on the echo excess
+//    (excludes the ceiling echo), and the LOS as each microphone's first arrival.
 #pragma once
 
 #include <cstddef>
@@ -102,6 +106,33 @@ struct SendingTimeVoteOptions {
   /// kConsensus: the spread of the microphones' heights (m), >= 0; it spreads K by up to
   /// 4 h_s dh / c^2. 0.06: the ASSIST ceiling microphones span 4.824-4.879 m.
   double mic_height_spread_m = 0.06;
+  /// kConsensus: each microphone's height above the floor (m, > 0), in the emissions' microphone
+  /// order; empty: unknown, taken as equal. Known heights make the model exact: K_m =
+  /// 4 h_s h_m / c^2, so the clusters compare K / h_m (no height-spread slack) and the least
+  /// squares solve 2 d_m t_0 + h_m kappa_e = d_m (T_r,m + T_L,m) with kappa_e = 4 h_s / c^2 per
+  /// emission. Eq. 8.77 assumes equal heights: the ASSIST spread of 5.5 cm biases its t_0 by
+  /// ~0.1-0.4 ms (4 h_s dh / (2 c dd)), i.e. 3-13 cm of range.
+  std::vector<double> mic_heights_m;
+  /// Smallest (c (T_r - t_0))^2 - (c (T_L - t_0))^2 of a floor-echo pair (m^2), >= 0; 0: none.
+  /// A ceiling echo pairs with the LOS exactly like a floor echo (Eq. 8.74-8.76 hold for any
+  /// plane parallel to the microphones'): its excess 4 (C - h_m) (C - h_s) is that of a floor
+  /// echo of a sender at (C - h_m) (C - h_s) / h_m, and its 4-tuples share t_0 and K as well.
+  /// With 4 (C - h_m) h_m here (C the ceiling's height above the floor, h_m the lowest
+  /// microphone's), ceiling pairs are excluded whenever the sender is higher above the floor than
+  /// the microphones are below the ceiling (h_s > C - h_m), the only case in which the floor
+  /// pairs have the larger excess; below that height the two cannot be told apart by the stamps.
+  double min_excess_m2 = 0.0;
+  /// kConsensus: a pair's LOS stamp must be its microphone's first arrival after the hypothesis
+  /// t_0. Every pair of the sender's images in horizontal planes (LOS, floor, ceiling,
+  /// floor-ceiling, ...) satisfies Eq. 8.74-8.77 with the same t_0 and shares K across
+  /// microphones of one height, and so do the images in vertical walls with their own floor
+  /// echoes: a (ceiling echo, floor echo) or (wall echo, wall-floor echo) set is as consistent as
+  /// the (LOS, floor echo) one, and the direct path is the shortest of all paths. true: the
+  /// thesis's ch. 8 condition (line of sight), for sparse false alarms: a blocked or missed
+  /// direct path, or a false alarm before it, drops that microphone. false (default): every
+  /// (L, r) pair, as the thesis enumerates them; right with dense false alarms, but then the
+  /// K clusters of other image pairs compete with the true one.
+  bool los_is_first_arrival = false;
   /// The vote refuses inputs with more 4-tuples than this (>= 1), see CountVoteCombinations.
   /// 5e6: ~0.1 s of work and ~100 MB of candidates at most.
   std::size_t max_combinations = 5'000'000;
@@ -148,5 +179,14 @@ struct SendingTimeVote {
 /// std::nullopt for invalid options, more than max_combinations 4-tuples, or no candidate.
 std::optional<SendingTimeVote> VoteSendingTime(std::span<const EmissionStamps> emissions,
                                                const SendingTimeVoteOptions& options);
+
+/// The consensus from one hypothesis instead of the vote's search: the K clusters of every
+/// emission under t0_hypothesis_s, t_0 refined by weighted least squares over their pairs,
+/// re-clustered and refined once more (the steps after the search of kConsensus). For a tracked
+/// sending time, predicted from the last emission's t_0 and the interval: K hardly depends on
+/// t_0 (dK/dt_0 = -2 (T_r - T_L)), so a hypothesis within ~0.1 ms finds the same clusters.
+/// std::nullopt for invalid options or when no emission has three microphones sharing K.
+std::optional<SendingTimeVote> VoteSendingTimeAt(std::span<const EmissionStamps> emissions, double t0_hypothesis_s,
+                                                 const SendingTimeVoteOptions& options);
 
 }  // namespace mirage::estimation

@@ -37,6 +37,9 @@
 // estimate. The passes run twice, after pass 0 and directly from the prediction, and the outcome
 // whose estimate explains more stamps within 3 sigma is kept (docs/methods/acoustic.md).
 //
+// Floor echoes ("ground_echo", mode 3d): per emission the ch. 8 fix of ground_echo_fix.h, the
+// line of sight and the floor echo of each microphone, with its HDOP and VDOP.
+//
 // Snapshot ("nlls"): per emission a Levenberg-Marquardt fix of [S, b] from random starts, with
 // each microphone's earliest stamp that passes the TDOA bound, no motion model (the thesis's
 // NLLS comparison "with random initialisation using all measurements").
@@ -123,6 +126,7 @@ class AcousticEstimator final : public Estimator {
   StepOutput Filter(const core::Epoch& epoch);
   StepOutput Snapshot(const core::Epoch& epoch);
   StepOutput Combinatorial(const core::Epoch& epoch);
+  StepOutput GroundEcho(const core::Epoch& epoch);
   [[nodiscard]] AgentEstimate Estimate() const;
 
   /// The inertial rows of this epoch: the increment since the last emission, if any.
@@ -144,6 +148,7 @@ class AcousticEstimator final : public Estimator {
   bool started_ = false;         // a position is known
   bool have_emission_ = false;   // b refers to an emission (set at the first epoch with stamps)
   std::optional<Vec3> start_m_;  // a given start, waiting for its first emission
+  std::optional<GroundEchoFixer> ground_echo_;  // estimator "ground_echo"
   core::Rng rng_;                // the NLLS's random starts (fixed seed: results are reproducible)
   AgentEstimate last_;
 };

@@ -11,6 +11,7 @@
 #include "mirage/estimation/imu/pdr.h"
 #include "mirage/estimation/motion/constant_velocity.h"
 #include "mirage/estimation/robust/irls_update.h"
+#include "mirage/methods/acoustic/ground_echo_fix.h"
 #include "mirage/methods/acoustic/los_identification.h"
 
 namespace mirage::methods::acoustic {
@@ -20,7 +21,9 @@ struct AcousticOptions {
   /// "rekf": the robust EKF, Hampel-weighted iteratively reweighted least squares over the prior
   /// and the stamps (Sec. 5.2, Eq. 5.24-5.30); "ekf": the same filter with every weight 1 (the
   /// thesis's standard EKF); "nlls": a snapshot Levenberg-Marquardt fix per emission from random
-  /// starts using every microphone's stamp (the thesis's NLLS comparison).
+  /// starts using every microphone's stamp (the thesis's NLLS comparison); "combinatorial": the
+  /// 8-step LOS identification per emission (Sec. 5.1); "ground_echo": a 3-D fix per emission
+  /// from the LOS and floor-echo stamps (ch. 8, ground_echo_fix.h), mode 3d.
   std::string estimator = "rekf";
   /// "planar": x, y at the world's known sender height (ch. 5: the combinatorial method and the
   /// thesis's errors are 2-D); "3d": the height too.
@@ -70,6 +73,8 @@ struct AcousticOptions {
   /// The combinatorial estimator's switches (its stamp sigma, TDOA bound and margin are the
   /// method's range_sigma_m, tdoa_bound_gate and tdoa_bound_sigmas).
   LosIdentificationOptions los;
+  /// The ground_echo estimator's options (its sigma, interval and drift are the method's).
+  GroundEchoOptions ground_echo;
   /// Random starts of the snapshot NLLS, >= 1. 10.
   int nlls_starts = 10;
   /// Fuse the phone's dead reckoning (loose coupling, Eq. 5.35-5.39): position increments between

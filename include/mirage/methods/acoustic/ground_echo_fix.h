@@ -1,0 +1,145 @@
+// SPDX-License-Identifier: MIT
+// The sender's 3-D position, its height above all, from the line of sight and the floor echo at
+// each ceiling microphone (Bordoy 2020, PhD thesis Univ. Freiburg, ch. 8, Sec. 8.4-8.5). The floor
+// echo is the line of sight of the microphone mirrored in the floor, M' = (x, y, 2 f - z); with
+// microphones on the ceiling the two rows of a microphone point nearly opposite ways in z, which
+// pins the height (VDOP ~1 instead of up to ~24 for TDOA on the line of sight alone, Sec. 8.3).
+//
+// Per emission (estimator "ground_echo" of the acoustic family, one fix per emission, no motion
+// model, as the thesis's Sec. 8.5 evaluation):
+//  1. Stamp selection: the consensus vote of Sec. 8.4 (estimation/solvers/sending_time_vote.h)
+//     over the emissions of the last vote_window_s, each emission's stamps minus its elapsed
+//     intervals k I (Eq. 8.79), picks t_0 and each microphone's LOS and floor-echo stamp. The
+//     thesis votes over all emissions of a static test; a moving sender with a drifting clock
+//     needs a window, shortened so that clock_drift_ppm moves t_0 by at most half a stamp sigma
+//     across it. The full search runs once; afterwards the last t_0 plus the elapsed intervals is
+//     the hypothesis (VoteSendingTimeAt), the search again only when no emission of the window had
+//     a t_0; a known sending time is itself the hypothesis.
+//  2. Geometry the vote is given (all from the world): the microphones' heights, which make
+//     K = 4 h_s h_m / c^2 exact (Eq. 8.77 assumes one height: the ASSIST spread of 5.5 cm
+//     biases t_0 by 0.1-0.4 ms); the ceiling, whose echo pairs with the LOS like a floor echo
+//     and is excluded by the excess bound 4 (C - h_m) h_m (valid while the sender is higher above
+//     the floor than the microphones are below the ceiling); and the rule that the LOS is each
+//     microphone's first arrival after t_0 (every pair of horizontal-plane or wall images, e.g.
+//     (ceiling echo, floor echo), satisfies Eq. 8.74-8.77 with the same t_0 and K).
+//  3. The sending time: "estimated", the vote's t_0 (Eq. 8.77-8.79); "known", the records'
+//     emission time (core::ToaStamps::emission_s: a synchronised sender or a reference system,
+//     the thesis's MoCap-derived t_s); "unknown", an offset b = c t_s solved with the position
+//     (pseudo-ranges, whose position fix equals the TDOA fix with the correlated covariance
+//     R_TD = D R D^T: Shin & Sung, Sec. 8.3; the thesis's "TDOA" rows).
+//  4. The fix: Levenberg-Marquardt (Eq. 8.80-8.82; the thesis uses gradient descent and Gauss-
+//     Newton) on the LOS rows |S - M_i| = c (T_L,i - t_0) and, with echoes, the floor-echo rows
+//     |S - M'_i| = c (T_r,i - t_0), from the last fix, else below the microphones' centroid. The
+//     microphone with the largest residual beyond 3 sigma is left out (both its rows) and the fix
+//     repeated while rows remain for the unknowns. With LOS rows only, coplanar microphones fit
+//     the sender's mirror image in their plane as well: a fix above the ceiling restarts from
+//     that mirror.
+//  5. Its CRLB and DOPs at the fix: (H^T R^-1 H)^-1 of the rows used, the range model (t_0 given)
+//     or the pseudo-range model (t_0 unknown); eval/dop.h computes the same from the geometry.
+// An emission without three microphones in the vote's cluster, or with fewer rows than unknowns,
+// or a degenerate or unconverged solve, has no fix. Left open: second-order echoes (floor-
+// ceiling, wall-floor) form further consistent clusters that the first-arrival rule does not
+// remove (docs/results/acoustic.md: order 2 in the example's last grid line).
+#pragma once
+
+#include <deque>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "mirage/core/epoch.h"
+#include "mirage/core/options_descriptor.h"
+#include "mirage/core/types.h"
+#include "mirage/estimation/solvers/sending_time_vote.h"
+#include "mirage/estimation/solvers/solver_fix.h"
+
+namespace mirage::methods::acoustic {
+
+/// Options of the floor-echo fix (the "ground_echo" section of the acoustic options).
+struct GroundEchoOptions {
+  /// Use the floor-echo rows (microphones mirrored in the floor). false: the LOS rows only, the
+  /// thesis's "without echoes" variants.
+  bool echoes = true;
+  /// "estimated": t_0 from the vote (Eq. 8.77-8.79); "known": the records' emission time;
+  /// "unknown": an offset solved with the position (the TDOA variants).
+  std::string sending_time = "estimated";
+  /// Longest span of emissions voted together (s), > 0. 1 s: ten emissions at the thesis's
+  /// 0.1 s interval (its vote pools all emissions of a static test); shortened to
+  /// stamp sigma / (2 clock_drift_ppm 1e-6) so that the clock's drift stays below half a sigma.
+  double vote_window_s = 1.0;
+  /// Largest height of the sender above the floor (m), > 0; bounds the echo delay (2 h_s / c).
+  /// 2.5 m: a hand-held or worn sender.
+  double max_sender_height_m = 2.5;
+  /// The vote drops 4-tuples whose t_0 noise gain exceeds this (Eq. 8.77's conditioning), > 0. 20.
+  double max_noise_gain = 20.0;
+};
+
+/// The section's descriptor (keys, units, ranges, docs).
+const core::OptionsDescriptor<GroundEchoOptions>& GroundEchoOptionsDescriptor();
+
+/// One emission's fix.
+struct GroundEchoFix {
+  bool found = false;
+  Vec3 position_m = Vec3::Zero();
+  Eigen::Matrix3d covariance_m2 = Eigen::Matrix3d::Zero();
+  double hdop = 0.0;  ///< at the fix, the rows used (Eq. 8.10-8.12)
+  double vdop = 0.0;
+  int los_rows = 0;
+  int echo_rows = 0;
+  /// The sending time used (s; "unknown": the solved offset over c); empty without a fix.
+  std::optional<double> sending_time_s;
+};
+
+/// The per-emission floor-echo fixer of one run: keeps the window of recent emissions for the vote.
+class GroundEchoFixer {
+ public:
+  /// @param mics_m            the microphones (m)
+  /// @param floor_z_m         the floor's height (m)
+  /// @param speed_mps         the assumed speed of sound (m/s), > 0
+  /// @param range_sigma_m     one stamp's standard deviation as a distance (m), > 0
+  /// @param interval_s        the nominal emission interval I (s), > 0
+  /// @param clock_drift_ppm   the sender clock's largest rate error (ppm), >= 0
+  /// @param ceiling_z_m       the ceiling's height (m) when the room has one: the vote then
+  ///                          excludes the LOS / ceiling-echo pairs (SendingTimeVoteOptions::min_excess_m2)
+  GroundEchoFixer(std::vector<Vec3> mics_m, double floor_z_m, double speed_mps, double range_sigma_m,
+                  double interval_s, double clock_drift_ppm, const GroundEchoOptions& options,
+                  std::optional<double> ceiling_z_m = std::nullopt);
+
+  /// The fix of one emission (its stamps in epoch.toas, receiver_index into mics_m).
+  GroundEchoFix Process(const core::Epoch& epoch);
+
+  /// The effective vote window (s).
+  [[nodiscard]] double vote_window_s() const { return window_s_; }
+
+ private:
+  struct Emission {
+    double t_s = 0.0;                              // the epoch's time
+    std::vector<std::vector<double>> stamps_s;     // per microphone, absolute times
+  };
+
+  std::vector<Vec3> mics_m_;
+  double floor_z_m_;
+  double c_mps_;
+  double sigma_m_;
+  double interval_s_;
+  double window_s_;
+  double mic_plane_z_m_ = 0.0;          // the microphones' mean height (m)
+  std::optional<double> ceiling_z_m_;   // the room's ceiling (m), if known
+  GroundEchoOptions options_;
+  estimation::SendingTimeVoteOptions vote_;
+  struct Track {
+    double epoch_s = 0.0;  // the epoch time of the last emission with a t_0
+    double t0_s = 0.0;     // its t_0 (s)
+  };
+  /// Levenberg-Marquardt from start_m (if any), else from fallback_start_m.
+  [[nodiscard]] std::optional<estimation::SolverFix> Solve(const std::vector<Vec3>& receivers_m,
+                                                           const std::vector<double>& values_m, bool offset_unknown,
+                                                           const std::optional<Vec3>& start_m,
+                                                           const Vec3& fallback_start_m) const;
+
+  std::deque<Emission> window_;
+  std::optional<Track> track_;
+  std::optional<Vec3> last_m_;
+};
+
+}  // namespace mirage::methods::acoustic

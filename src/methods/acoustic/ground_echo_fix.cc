@@ -1,0 +1,253 @@
+// SPDX-License-Identifier: MIT
+#include "mirage/methods/acoustic/ground_echo_fix.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "mirage/estimation/robust/hampel.h"
+#include "mirage/estimation/solvers/toa_nlls.h"
+
+namespace mirage::methods::acoustic {
+
+const core::OptionsDescriptor<GroundEchoOptions>& GroundEchoOptionsDescriptor() {
+  using core::ValueRange;
+  using O = GroundEchoOptions;
+  static const auto descriptor = [] {
+    core::OptionsDescriptor<O> d("methods::acoustic::GroundEchoOptions");
+    d.Boolean(&O::echoes, {.key = "echoes",
+                           .doc = "Use the floor-echo rows (microphones mirrored in the floor, Sec. 8.4); false: the "
+                                  "line-of-sight rows only."});
+    d.Choice(&O::sending_time,
+             {.key = "sending_time",
+              .doc = "estimated: t_0 from the vote over 4-tuples of LOS and floor-echo stamps (Eq. 8.77-8.79); "
+                     "known: the records' emission time (a synchronised sender or a reference system); unknown: an "
+                     "offset solved with the position (the TDOA variants, Sec. 8.3)."},
+             {"estimated", "known", "unknown"});
+    d.Number(&O::vote_window_s,
+             {.key = "vote_window_s",
+              .unit = "s",
+              .range = ValueRange::Above(0.0),
+              .doc = "Longest span of emissions voted together; shortened so that the clock drift moves t_0 by at "
+                     "most half a stamp sigma across it. 1 s."});
+    d.Number(&O::max_sender_height_m, {.key = "max_sender_height_m",
+                                       .unit = "m",
+                                       .range = ValueRange::Above(0.0),
+                                       .doc = "Largest height of the sender above the floor: the echo delay is at "
+                                              "most 2 h_s / c. 2.5 m."});
+    d.Number(&O::max_noise_gain, {.key = "max_noise_gain",
+                                  .range = ValueRange::Above(0.0),
+                                  .doc = "The vote drops 4-tuples whose t_0 noise gain (Eq. 8.77) exceeds this. 20."});
+    return d;
+  }();
+  return descriptor;
+}
+
+GroundEchoFixer::GroundEchoFixer(std::vector<Vec3> mics_m, double floor_z_m, double speed_mps, double range_sigma_m,
+                                 double interval_s, double clock_drift_ppm, const GroundEchoOptions& options,
+                                 std::optional<double> ceiling_z_m)
+    : mics_m_(std::move(mics_m)),
+      floor_z_m_(floor_z_m),
+      c_mps_(speed_mps),
+      sigma_m_(range_sigma_m),
+      interval_s_(interval_s),
+      window_s_(options.vote_window_s),
+      options_(options) {
+  if (mics_m_.size() < 3 ||
+      std::any_of(mics_m_.begin(), mics_m_.end(), [&](const Vec3& m) { return !(m.z() > floor_z_m); }) || !(speed_mps > 0.0) || !(range_sigma_m > 0.0) || !(interval_s > 0.0)) {
+    throw std::invalid_argument("ground_echo: needs >= 3 microphones and positive speed, sigma and interval");
+  }
+  // The drift moves t_0 by ppm 1e-6 per second of window: keep that below half a stamp sigma.
+  const double sigma_s = sigma_m_ / c_mps_;
+  if (clock_drift_ppm > 0.0) window_s_ = std::min(window_s_, 0.5 * sigma_s / (clock_drift_ppm * 1e-6));
+  double lowest_m = mics_m_.front().z(), highest_m = lowest_m;
+  for (const auto& m : mics_m_) {
+    lowest_m = std::min(lowest_m, m.z());
+    highest_m = std::max(highest_m, m.z());
+  }
+  vote_.method = estimation::SendingTimeVoteMethod::kConsensus;
+  vote_.speed_mps = c_mps_;
+  vote_.stamp_sigma_s = sigma_s;
+  vote_.max_sender_height_m = options_.max_sender_height_m;
+  vote_.max_noise_gain = options_.max_noise_gain;
+  vote_.max_mic_height_m = std::max(highest_m - floor_z_m_, 1e-3);
+  vote_.mic_height_spread_m = highest_m - lowest_m;
+  vote_.los_is_first_arrival = true;
+  for (const auto& m : mics_m_) vote_.mic_heights_m.push_back(m.z() - floor_z_m_);
+  for (const auto& m : mics_m_) mic_plane_z_m_ += m.z() / static_cast<double>(mics_m_.size());
+  ceiling_z_m_ = ceiling_z_m;
+  if (ceiling_z_m && *ceiling_z_m > highest_m) {
+    const double below_ceiling_m = *ceiling_z_m - lowest_m;
+    vote_.min_excess_m2 = 4.0 * below_ceiling_m * (lowest_m - floor_z_m_);
+  }
+}
+
+std::optional<estimation::SolverFix> GroundEchoFixer::Solve(const std::vector<Vec3>& receivers_m,
+                                                            const std::vector<double>& values_m, bool offset_unknown,
+                                                            const std::optional<Vec3>& start_m,
+                                                            const Vec3& fallback_start_m) const {
+  const std::vector<double> sigmas_m(receivers_m.size(), sigma_m_);
+  std::vector<Vec3> starts;
+  if (start_m) starts.push_back(*start_m);
+  starts.push_back(fallback_start_m);
+  estimation::NllsOptions nlls;
+  nlls.method = estimation::NllsMethod::kLevenbergMarquardt;
+  for (const Vec3& s : starts) {
+    estimation::SolverFix f;
+    if (offset_unknown) {
+      std::vector<double> implied_m;
+      for (std::size_t i = 0; i < receivers_m.size(); ++i) implied_m.push_back(values_m[i] - (s - receivers_m[i]).norm());
+      f = estimation::SolveToaNlls(receivers_m, values_m, sigmas_m, s, estimation::Median(implied_m), nlls);
+    } else {
+      f = estimation::SolveRangeNlls(receivers_m, values_m, sigmas_m, s, nlls);
+    }
+    if (f.converged && !f.degenerate()) return f;
+  }
+  return std::nullopt;
+}
+
+GroundEchoFix GroundEchoFixer::Process(const core::Epoch& epoch) {
+  GroundEchoFix out;
+  Emission emission;
+  emission.t_s = epoch.t_s;
+  emission.stamps_s.resize(mics_m_.size());
+  std::optional<double> known_emission_s;
+  for (const auto& record : epoch.toas) {
+    auto& list = emission.stamps_s.at(static_cast<std::size_t>(record.receiver_index));
+    list.insert(list.end(), record.toa_s.begin(), record.toa_s.end());
+    if (record.emission_s && !known_emission_s) known_emission_s = record.emission_s;
+  }
+  window_.push_back(std::move(emission));
+  while (window_.front().t_s < epoch.t_s - window_s_) window_.pop_front();
+
+  // 1. The vote over the window, every emission's stamps relative to this epoch's time minus its
+  //    elapsed intervals (Eq. 8.79), so that all share this emission's t_0.
+  std::vector<estimation::EmissionStamps> voted;
+  for (const auto& e : window_) {
+    const double elapsed_s = std::round((e.t_s - epoch.t_s) / interval_s_) * interval_s_;
+    estimation::EmissionStamps stamps;
+    for (const auto& list : e.stamps_s) {
+      std::vector<double> relative;
+      for (const double t_s : list) relative.push_back(t_s - epoch.t_s - elapsed_s);
+      stamps.mic_stamps_s.push_back(std::move(relative));
+    }
+    voted.push_back(std::move(stamps));
+  }
+  // A tracked sending time predicts this one (the last t_0 plus the elapsed intervals; the drift
+  // over them is far below a stamp sigma); the full search runs only without a recent t_0.
+  std::optional<estimation::SendingTimeVote> vote;
+  if (options_.sending_time == "known" && known_emission_s) {
+    // The known t_0 is the hypothesis: only the stamps are selected.
+    vote = estimation::VoteSendingTimeAt(voted, *known_emission_s - epoch.t_s, vote_);
+  } else if (track_ && epoch.t_s - track_->epoch_s <= window_s_) {
+    const double elapsed_s = std::round((epoch.t_s - track_->epoch_s) / interval_s_) * interval_s_;
+    vote = estimation::VoteSendingTimeAt(voted, track_->t0_s + elapsed_s - epoch.t_s, vote_);
+  } else {
+    vote = estimation::VoteSendingTime(voted, vote_);
+  }
+  if (!vote) return out;
+  const auto& chosen = vote->chosen.back();
+  const auto heard = std::count_if(chosen.begin(), chosen.end(), [](const auto& c) { return c.los_index >= 0; });
+  if (heard < 3) return out;  // this emission has no consistent LOS / floor-echo set
+  track_ = Track{epoch.t_s, epoch.t_s + vote->t0_s};
+
+  // 2. The sending time, relative to epoch.t_s.
+  std::optional<double> t0_s;
+  if (options_.sending_time == "estimated") t0_s = vote->t0_s;
+  if (options_.sending_time == "known") {
+    if (!known_emission_s) return out;  // the records do not carry it: no fix
+    t0_s = *known_emission_s - epoch.t_s;
+  }
+
+  // 3. The rows: this emission's chosen LOS and floor-echo stamps.
+  const auto& stamps = voted.back().mic_stamps_s;
+  std::vector<Vec3> receivers_m;
+  std::vector<double> values_m;
+  std::vector<Vec3> row_mics_m;  // the microphones with rows
+  std::vector<int> row_mic;      // per row: its index into row_mics_m
+  for (std::size_t m = 0; m < mics_m_.size(); ++m) {
+    const auto& c = chosen[m];
+    if (c.los_index < 0) continue;
+    const double t_los_s = stamps[m][static_cast<std::size_t>(c.los_index)];
+    receivers_m.push_back(mics_m_[m]);
+    values_m.push_back(c_mps_ * (t_los_s - t0_s.value_or(0.0)));
+    row_mic.push_back(static_cast<int>(row_mics_m.size()));
+    row_mics_m.push_back(mics_m_[m]);
+    if (options_.echoes && c.ground_index >= 0) {
+      const double t_echo_s = stamps[m][static_cast<std::size_t>(c.ground_index)];
+      receivers_m.emplace_back(mics_m_[m].x(), mics_m_[m].y(), 2.0 * floor_z_m_ - mics_m_[m].z());
+      values_m.push_back(c_mps_ * (t_echo_s - t0_s.value_or(0.0)));
+      row_mic.push_back(row_mic.back());
+    }
+  }
+  const bool offset_unknown = !t0_s.has_value();
+  const std::size_t unknowns = offset_unknown ? 4 : 3;
+
+  // 4. The fix from the last one, else from below the microphones' centroid; then the microphone
+  //    with the largest residual beyond 3 sigma is left out (both its rows: a wrong LOS pick
+  //    makes its echo wrong too) and the fix repeated, while more rows than unknowns remain.
+  Vec3 centroid_m = Vec3::Zero();
+  for (const auto& m : row_mics_m) centroid_m += m;
+  centroid_m /= static_cast<double>(row_mics_m.size());
+  centroid_m.z() = floor_z_m_ + 0.5 * (centroid_m.z() - floor_z_m_);
+  std::vector<bool> used(row_mics_m.size(), true);
+  std::optional<estimation::SolverFix> fix;
+  std::vector<Vec3> rx_m;
+  std::vector<double> z_m;
+  std::vector<int> rx_mic;
+  for (;;) {
+    rx_m.clear();
+    z_m.clear();
+    rx_mic.clear();
+    for (std::size_t r = 0; r < receivers_m.size(); ++r) {
+      if (!used[static_cast<std::size_t>(row_mic[r])]) continue;
+      rx_m.push_back(receivers_m[r]);
+      z_m.push_back(values_m[r]);
+      rx_mic.push_back(row_mic[r]);
+    }
+    if (rx_m.size() < unknowns) return out;
+    fix = Solve(rx_m, z_m, offset_unknown, fix ? std::optional<Vec3>(fix->position_m) : last_m_, centroid_m);
+    if (!fix) return out;
+    // Coplanar microphones (LOS rows only) fit the sender and its mirror image in their plane
+    // alike: a fix above the ceiling is that mirror; start again from below the microphones.
+    if (ceiling_z_m_ && fix->position_m.z() > *ceiling_z_m_) {
+      Vec3 mirrored_m = fix->position_m;
+      mirrored_m.z() = 2.0 * mic_plane_z_m_ - fix->position_m.z();
+      fix = Solve(rx_m, z_m, offset_unknown, mirrored_m, centroid_m);
+      if (!fix || fix->position_m.z() > *ceiling_z_m_) return out;
+    }
+    int worst = -1;
+    double worst_m = 3.0 * sigma_m_;
+    for (std::size_t r = 0; r < rx_m.size(); ++r) {
+      const double residual_m = std::abs(z_m[r] - (fix->position_m - rx_m[r]).norm() - fix->offset_m);
+      if (residual_m > worst_m) {
+        worst_m = residual_m;
+        worst = rx_mic[r];
+      }
+    }
+    if (worst < 0) break;
+    used[static_cast<std::size_t>(worst)] = false;
+  }
+  for (std::size_t r = 0; r < rx_mic.size(); ++r) {
+    const bool is_echo = r > 0 && rx_mic[r] == rx_mic[r - 1];
+    (is_echo ? out.echo_rows : out.los_rows) += 1;
+  }
+  // The DOPs of the rows used (Eq. 8.10-8.12): the solver's covariance is (H^T R^-1 H)^-1 at the
+  // fix, the CRLB of the range model (t_0 given) or of the pseudo-range model (t_0 unknown: the
+  // position block of [x, y, z, b]), each row with sigma.
+  const Eigen::Matrix3d crlb_m2 = fix->covariance_m2.topLeftCorner<3, 3>();
+  const double hdop = std::sqrt(crlb_m2(0, 0) + crlb_m2(1, 1)) / sigma_m_;
+  const double vdop = std::sqrt(crlb_m2(2, 2)) / sigma_m_;
+  if (!std::isfinite(hdop) || !std::isfinite(vdop)) return out;
+
+  out.found = true;
+  out.position_m = fix->position_m;
+  out.covariance_m2 = crlb_m2;
+  out.hdop = hdop;
+  out.vdop = vdop;
+  out.sending_time_s = epoch.t_s + (offset_unknown ? fix->offset_m / c_mps_ : *t0_s);
+  last_m_ = fix->position_m;
+  return out;
+}
+
+}  // namespace mirage::methods::acoustic
