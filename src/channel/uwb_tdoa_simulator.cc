@@ -19,6 +19,15 @@ std::int64_t FirstSlotAtOrAfter(double t_s, double rate_hz) {
   return static_cast<std::int64_t>(std::ceil(t_s * rate_hz - kSlotTolerance));
 }
 
+// The interval [t_begin_s, t_end_s) can be simulated: valid options, ids for the anchors, at
+// least two anchors, finite times whose slot numbers fit an int64 with room to spare.
+bool Simulatable(const UwbTdoaOptions& options, std::size_t anchors, std::size_t ids, double t_begin_s, double t_end_s) {
+  if (anchors < 2 || ids != anchors || !Validate(options).empty()) return false;
+  constexpr double kLargestSlot = 4.0e18;
+  return std::isfinite(t_begin_s) && std::isfinite(t_end_s) && t_end_s > t_begin_s &&
+         std::abs(t_begin_s * options.rate_hz) < kLargestSlot && std::abs(t_end_s * options.rate_hz) < kLargestSlot;
+}
+
 // k mod n in [0, n) for negative k too.
 std::size_t Modulo(std::int64_t k, std::size_t n) {
   const auto n_signed = static_cast<std::int64_t>(n);
@@ -146,10 +155,8 @@ std::vector<UwbTdoaSample> SimulateUwbTdoaStep(const UwbTdoaOptions& options, st
                                                std::span<const std::string> anchor_ids,
                                                std::span<const geometry::Reflector3> obstacles, double t_s,
                                                double dt_s, const Vec3& tag_m, core::Rng& rng) {
-  assert(anchor_ids.size() == anchors_m.size());
-  assert(options.rate_hz > 0.0);
   std::vector<UwbTdoaSample> rows;
-  if (anchors_m.size() < 2 || !(dt_s > 0.0)) return rows;
+  if (!Simulatable(options, anchors_m.size(), anchor_ids.size(), t_s, t_s + dt_s)) return rows;
   const std::int64_t k_begin = FirstSlotAtOrAfter(t_s, options.rate_hz);
   const std::int64_t k_end = FirstSlotAtOrAfter(t_s + dt_s, options.rate_hz);
   for (std::int64_t k = k_begin; k < k_end; ++k) {
@@ -165,10 +172,8 @@ std::vector<UwbTdoaSample> SimulateUwbTdoa(const UwbTdoaOptions& options, std::s
                                            std::span<const geometry::Reflector3> obstacles,
                                            const std::function<Vec3(double)>& tag_position_at, double t_start_s,
                                            double t_end_s, core::Rng& rng) {
-  assert(anchor_ids.size() == anchors_m.size());
-  assert(options.rate_hz > 0.0);
   std::vector<UwbTdoaSample> rows;
-  if (anchors_m.size() < 2 || !(t_end_s > t_start_s)) return rows;
+  if (!Simulatable(options, anchors_m.size(), anchor_ids.size(), t_start_s, t_end_s)) return rows;
   const std::int64_t k_begin = FirstSlotAtOrAfter(t_start_s, options.rate_hz);
   const std::int64_t k_end = FirstSlotAtOrAfter(t_end_s, options.rate_hz);
   for (std::int64_t k = k_begin; k < k_end; ++k) {

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <string>
 #include <utility>
@@ -316,6 +317,18 @@ TEST(SimulateUwbTdoaStep, StepsOfAnyLengthCoverEverySlotOnceAtTheRate) {
                                   1.0, tag, rng)
                   .empty());
   EXPECT_TRUE(SimulateUwbTdoaStep(UwbTdoaOptions{}, anchors, ids, {}, 0.0, 0.0, tag, rng).empty());
+  // Bad input gives no rows either (no undefined slot arithmetic, no read past the ids): times
+  // that are not finite or beyond any slot number, one id missing, invalid options.
+  const double inf = std::numeric_limits<double>::infinity();
+  EXPECT_TRUE(SimulateUwbTdoaStep(UwbTdoaOptions{}, anchors, ids, {}, 0.0, inf, tag, rng).empty());
+  EXPECT_TRUE(SimulateUwbTdoaStep(UwbTdoaOptions{}, anchors, ids, {}, std::nan(""), 1.0, tag, rng).empty());
+  EXPECT_TRUE(SimulateUwbTdoaStep(UwbTdoaOptions{}, anchors, ids, {}, 0.0, 1e300, tag, rng).empty());
+  EXPECT_TRUE(SimulateUwbTdoaStep(UwbTdoaOptions{}, anchors, std::span(ids).first(ids.size() - 1), {}, 0.0, 1.0, tag, rng)
+                  .empty());
+  UwbTdoaOptions bad;
+  bad.rate_hz = 0.0;
+  EXPECT_TRUE(SimulateUwbTdoaStep(bad, anchors, ids, {}, 0.0, 1.0, tag, rng).empty());
+  EXPECT_TRUE(SimulateUwbTdoa(UwbTdoaOptions{}, anchors, ids, {}, [&](double) { return tag; }, -inf, 1.0, rng).empty());
   core::Rng after = before;
   EXPECT_EQ(rng.NextU64(), after.NextU64());
 }

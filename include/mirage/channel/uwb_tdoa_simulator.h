@@ -106,7 +106,8 @@ struct UwbTdoaSample {
 /// The rows of the slots t_k = k / rate_hz in [t_s, t_s + dt_s) (bounds with a tolerance of 1e-6
 /// of a slot, so that consecutive steps t_s + dt_s = next t_s share no slot and miss none), in
 /// time order, all for the tag at tag_m. Takes exactly one draw of rng per slot (received or
-/// not). Empty when fewer than two anchors are given or dt_s <= 0.
+/// not). Empty (no draw) when fewer than two anchors or not one id per anchor are given, the
+/// options are invalid, or the interval is empty or not finite.
 /// @param anchors_m   the anchors' positions (m), world frame
 /// @param anchor_ids  the anchors' ids, one per anchor (copied into id_i, id_j)
 /// @param obstacles   reflectors whose crossing biases a leg (only those with blocks = true)

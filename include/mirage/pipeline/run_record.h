@@ -24,6 +24,7 @@ struct TrackStep {
   Eigen::Matrix3d covariance_m2 = Eigen::Matrix3d::Zero();
   std::optional<double> error_m;  ///< |estimate - truth| (the plane's for planar methods)
   /// |z estimate - z truth| for a 3-D estimate (z with a non-zero variance); empty for planar ones.
+  /// At an epoch without a fix the estimate is the last one, as for error_m.
   std::optional<double> height_error_m;
   std::optional<double> hdop;  ///< the method's DOPs of this epoch (methods::StepOutput)
   std::optional<double> vdop;

@@ -331,7 +331,7 @@ Score ScoreHypothesis(const PairTable& pairs, double t_s, const SendingTimeVoteO
   return score;
 }
 
-/// From hypothesis t_s: cluster, refine t_0 by RefineSendingTime, re-cluster and refine once more.
+/// From hypothesis t_s: cluster, refine t_0 by RefineSendingTime, re-cluster, until t_0 settles.
 /// Returns the final support.
 Score RefineHypothesis(double t_s, const PairTable& pairs, const SendingTimeVoteOptions& options, SendingTimeVote* vote,
                        Selection* selection);

@@ -55,7 +55,8 @@ GroundEchoFixer::GroundEchoFixer(std::vector<Vec3> mics_m, double floor_z_m, dou
       options_(options) {
   if (mics_m_.size() < 3 ||
       std::any_of(mics_m_.begin(), mics_m_.end(), [&](const Vec3& m) { return !(m.z() > floor_z_m); }) || !(speed_mps > 0.0) || !(range_sigma_m > 0.0) || !(interval_s > 0.0)) {
-    throw std::invalid_argument("ground_echo: needs >= 3 microphones and positive speed, sigma and interval");
+    throw std::invalid_argument(
+        "ground_echo: needs >= 3 microphones, all above the floor, and positive speed, sigma and interval");
   }
   // The drift moves t_0 by ppm 1e-6 per second of window: keep that below half a stamp sigma.
   const double sigma_s = sigma_m_ / c_mps_;
@@ -76,7 +77,10 @@ GroundEchoFixer::GroundEchoFixer(std::vector<Vec3> mics_m, double floor_z_m, dou
   for (const auto& m : mics_m_) vote_.mic_heights_m.push_back(m.z() - floor_z_m_);
   for (const auto& m : mics_m_) mic_plane_z_m_ += m.z() / static_cast<double>(mics_m_.size());
   ceiling_z_m_ = ceiling_z_m;
-  if (ceiling_z_m && *ceiling_z_m > highest_m) {
+  // The ceiling pairs are excluded for senders higher above the floor than the microphones are
+  // below the ceiling; when that gap exceeds the largest sender height the bound would exclude
+  // every sender, and the two families cannot be told apart: no bound then.
+  if (ceiling_z_m && *ceiling_z_m > highest_m && *ceiling_z_m - lowest_m < options_.max_sender_height_m) {
     const double below_ceiling_m = *ceiling_z_m - lowest_m;
     vote_.min_excess_m2 = 4.0 * below_ceiling_m * (lowest_m - floor_z_m_);
   }
@@ -124,7 +128,12 @@ GroundEchoFix GroundEchoFixer::Process(const core::Epoch& epoch) {
   //    elapsed intervals (Eq. 8.79), so that all share this emission's t_0.
   std::vector<estimation::EmissionStamps> voted;
   for (const auto& e : window_) {
-    const double elapsed_s = std::round((e.t_s - epoch.t_s) / interval_s_) * interval_s_;
+    // Elapsed intervals from the epochs' times (each its emission's earliest stamp): an emission
+    // whose time falls far between two interval counts (a false alarm before every arrival) is
+    // left out of the vote rather than shifted by a whole interval.
+    const double intervals = (e.t_s - epoch.t_s) / interval_s_;
+    if (std::abs(intervals - std::round(intervals)) > 0.25) continue;
+    const double elapsed_s = std::round(intervals) * interval_s_;
     estimation::EmissionStamps stamps;
     for (const auto& list : e.stamps_s) {
       std::vector<double> relative;
@@ -209,12 +218,16 @@ GroundEchoFix GroundEchoFixer::Process(const core::Epoch& epoch) {
     fix = Solve(rx_m, z_m, offset_unknown, fix ? std::optional<Vec3>(fix->position_m) : last_m_, centroid_m);
     if (!fix) return out;
     // Coplanar microphones (LOS rows only) fit the sender and its mirror image in their plane
-    // alike: a fix above the ceiling is that mirror; start again from below the microphones.
-    if (ceiling_z_m_ && fix->position_m.z() > *ceiling_z_m_) {
+    // alike: a fix above the ceiling, or higher than any sender, is that mirror; start again from
+    // below the microphones.
+    const auto implausible = [&](const Vec3& p) {
+      return (ceiling_z_m_ && p.z() > *ceiling_z_m_) || p.z() - floor_z_m_ > options_.max_sender_height_m;
+    };
+    if (implausible(fix->position_m)) {
       Vec3 mirrored_m = fix->position_m;
       mirrored_m.z() = 2.0 * mic_plane_z_m_ - fix->position_m.z();
       fix = Solve(rx_m, z_m, offset_unknown, mirrored_m, centroid_m);
-      if (!fix || fix->position_m.z() > *ceiling_z_m_) return out;
+      if (!fix || implausible(fix->position_m)) return out;
     }
     int worst = -1;
     double worst_m = 3.0 * sigma_m_;

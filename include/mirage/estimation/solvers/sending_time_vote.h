@@ -29,7 +29,7 @@
 //    inliers beyond two per emission wins (ties: the smaller sum of squared K residuals over their
 //    tolerances, as in MSAC). t_0 is then the weighted least-squares solution of
 //    2 d_m t_0 + K_e = d_m (T_r,m + T_L,m) over the inliers (linear in t_0 and one K_e per
-//    emission; with two microphones it is Eq. 8.77), re-clustered and re-solved once.
+//    emission; with two microphones it is Eq. 8.77), re-clustered and re-solved until t_0 settles.
 //    Hypothesis scoring costs O(H E P_e log P_e) for H <= candidates hypotheses, E emissions,
 //    P_e pairs per emission. The refinement re-clusters until t_0 moves by less than a tenth of
 //    a stamp sigma (K hardly depends on t_0, so the search's hypothesis may be ~1 ms off).
@@ -182,7 +182,8 @@ std::optional<SendingTimeVote> VoteSendingTime(std::span<const EmissionStamps> e
 
 /// The consensus from one hypothesis instead of the vote's search: the K clusters of every
 /// emission under t0_hypothesis_s, t_0 refined by weighted least squares over their pairs,
-/// re-clustered and refined once more (the steps after the search of kConsensus). For a tracked
+/// re-clustered and refined until t_0 moves by less than 0.1 stamp sigma, at most 8 times (the
+/// steps after the search of kConsensus). For a tracked
 /// sending time, predicted from the last emission's t_0 and the interval: K hardly depends on
 /// t_0 (dK/dt_0 = -2 (T_r - T_L)), so a hypothesis within ~0.1 ms finds the same clusters.
 /// std::nullopt for invalid options or when no emission has three microphones sharing K.

@@ -86,7 +86,8 @@ struct GroundEchoFix {
   double vdop = 0.0;
   int los_rows = 0;
   int echo_rows = 0;
-  /// The sending time used (s; "unknown": the solved offset over c); empty without a fix.
+  /// The sending time used, in the stamps' time base (s; "unknown": the epoch time plus the
+  /// solved offset over c); empty without a fix.
   std::optional<double> sending_time_s;
 };
 
