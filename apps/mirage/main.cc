@@ -22,10 +22,12 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
+#include <yaml-cpp/yaml.h>
 
 #include "mirage/channel/cir_synthesizer.h"
 #include "mirage/channel/range_level_simulator.h"
 #include "mirage/channel/acoustic_stamps.h"
+#include "mirage/channel/uwb_tdoa_simulator.h"
 #include "mirage/channel/imu_simulator.h"
 #include "mirage/channel/ranging_simulator.h"
 #include "mirage/estimation/imu/pdr.h"
@@ -192,6 +194,8 @@ std::vector<DescribedSection> DescribedSections() {
        mirage::channel::RangeLevelOptionsDescriptor()},
       {"acoustic_stamps", "measurements", "arrival-time stamps of a sound sender at microphones (measurements.model acoustic)",
        mirage::channel::AcousticStampOptionsDescriptor()},
+      {"uwb_tdoa", "measurements", "pairwise UWB TDOA of a tag among anchors (measurements.model uwb_tdoa)",
+       mirage::channel::UwbTdoaOptionsDescriptor()},
       {"imu", "measurements.imu", "a smartphone IMU's samples (measurements.imu model imu)",
        mirage::channel::ImuOptionsDescriptor()},
       {"constant_heading_error", "measurements.imu",
@@ -233,6 +237,24 @@ int Describe(const std::string& name, bool markdown) {
                                "' (methods: " + mirage::methods::MethodNames() + "; sections: " + sections + ")");
 }
 
+// The scalar text at a dotted key path ("measurements.sigma_m") of a scenario document, empty
+// when the path leads to no scalar (a list index, a map, a missing key).
+std::string BaseValueText(const YAML::Node& document, const std::string& path) {
+  YAML::Node node;
+  node.reset(document);
+  std::size_t begin = 0;
+  while (begin <= path.size()) {
+    const std::size_t end = path.find('.', begin);
+    const std::string key = path.substr(begin, end == std::string::npos ? std::string::npos : end - begin);
+    const YAML::Node& here = node;  // const lookup: non-const operator[] would insert
+    if (!here.IsMap() || !here[key]) return {};
+    node.reset(here[key]);
+    if (end == std::string::npos) break;
+    begin = end + 1;
+  }
+  return node.IsScalar() ? node.Scalar() : std::string();
+}
+
 // Writes one simulated run as recorded data (anchors.csv, ranges.csv, truth.csv, or mics.csv,
 // toa.csv, truth.csv for an acoustic scenario) plus a scenario.yaml that runs it, so that
 // `mirage run DIR/scenario.yaml` replays exactly the ranges or stamps the Monte-Carlo driver's
@@ -241,8 +263,16 @@ int Simulate(const SimulateArgs& args) {
   mirage::io::ScenarioOverrides overrides;
   overrides.seed = ParseSeed(args.seed);
   const auto scenario = mirage::io::LoadScenario(args.scenario, overrides);
-  if (scenario.has_grid()) {
-    throw mirage::io::InputError(args.scenario + ": the scenario has a grid of variants; simulate one variant's scenario");
+  // A grid whose variants vary only the method (or restate the file's own values elsewhere, as
+  // a first variant "the file as written" does) has one set of measurements: the recording is
+  // the same for all, and its scenario runs the file's method.
+  for (const auto& variant : scenario.variants) {
+    for (const auto& [key, value] : variant.overrides) {
+      if (key.rfind("method.", 0) != 0 && BaseValueText(scenario.document, key) != value) {
+        throw mirage::io::InputError(args.scenario + ": the grid varies " + key +
+                                     ", so its variants have different measurements; simulate one variant's scenario");
+      }
+    }
   }
   const auto& config = scenario.variants.front().experiment;
   if (config.measurement_model == mirage::pipeline::MeasurementModel::kRecorded) {
@@ -287,12 +317,14 @@ int Simulate(const SimulateArgs& args) {
     for (const auto& step : recording.steps) {
       for (const auto& anchor : step.anchors) rows += anchor.ranges.size();
       for (const auto& mic : step.toas) rows += mic.toa_s.size();
+      rows += step.tdoas.size();
     }
+    const std::string kind = recording.tdoa ? "differences" : recording.toa_stamps ? "stamps" : "ranges";
+    const std::string files = recording.tdoa ? "anchors,tdoa" : recording.toa_stamps ? "mics,toa" : "anchors,ranges";
     std::cout << fmt::format("mirage simulate: {} trajectory '{}' run {} (seed {}): {} steps, {} {} -> {}/"
                              "{{{},truth}}.csv and scenario.yaml\n",
                              config.name, config.trajectories[static_cast<std::size_t>(trajectory)].name, args.run,
-                             config.seed, recording.steps.size(), rows, recording.toa_stamps ? "stamps" : "ranges",
-                             args.out, recording.toa_stamps ? "mics,toa" : "anchors,ranges");
+                             config.seed, recording.steps.size(), rows, kind, args.out, files);
   }
   return 0;
 }

@@ -106,6 +106,19 @@ Reflector3 VerticalReflector(std::string name, const Vec2& a_m, const Vec2& b_m,
   return r;
 }
 
+std::vector<Reflector3> BoxReflectors(const std::string& name, const Vec3& lo_m, const Vec3& hi_m, double reflection_coeff) {
+  assert((hi_m - lo_m).minCoeff() > 0.0);
+  const Vec2 centre_m = 0.5 * (lo_m + hi_m).head<2>();
+  const Vec3 half_m = 0.5 * (hi_m - lo_m);
+  const Vec2 a(lo_m.x(), lo_m.y()), b(hi_m.x(), lo_m.y()), c(hi_m.x(), hi_m.y()), d(lo_m.x(), hi_m.y());
+  return {HorizontalReflector(name + " bottom", centre_m, half_m.x(), half_m.y(), lo_m.z(), reflection_coeff),
+          HorizontalReflector(name + " top", centre_m, half_m.x(), half_m.y(), hi_m.z(), reflection_coeff),
+          VerticalReflector(name + " y-", a, b, lo_m.z(), hi_m.z(), reflection_coeff),
+          VerticalReflector(name + " x+", b, c, lo_m.z(), hi_m.z(), reflection_coeff),
+          VerticalReflector(name + " y+", c, d, lo_m.z(), hi_m.z(), reflection_coeff),
+          VerticalReflector(name + " x-", d, a, lo_m.z(), hi_m.z(), reflection_coeff)};
+}
+
 std::vector<Reflector3> ShoeboxReflectors(double length_x_m, double length_y_m, double height_m,
                                           double reflection_coeff) {
   const double lx = length_x_m, ly = length_y_m, h = height_m;

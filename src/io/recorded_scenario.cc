@@ -29,8 +29,13 @@ void WriteRecordedScenario(const Scenario& scenario, int trajectory, const std::
   YAML::Node measurements(YAML::NodeType::Map);
   measurements["model"] = "recorded";
   const bool stamps = e.measurement_model == pipeline::MeasurementModel::kAcoustic;
+  const bool tdoa = e.measurement_model == pipeline::MeasurementModel::kUwbTdoa;
   measurements[stamps ? "mics" : "anchors"] = stamps ? "mics.csv" : "anchors.csv";
-  measurements[stamps ? "toa" : "ranges"] = stamps ? "toa.csv" : "ranges.csv";
+  if (tdoa) {
+    measurements["tdoa"] = "tdoa.csv";
+  } else {
+    measurements[stamps ? "toa" : "ranges"] = stamps ? "toa.csv" : "ranges.csv";
+  }
   measurements["truth"] = "truth.csv";
   // The shortest text that reads back as the same double ("0.1", not "0.10000000000000001").
   if (e.measurement_model == pipeline::MeasurementModel::kRanging) {
@@ -43,6 +48,12 @@ void WriteRecordedScenario(const Scenario& scenario, int trajectory, const std::
     measurements["stamp_sigma_s"] = fmt::format("{}", e.acoustic.stamp_sigma_s);
     measurements["detection_probability"] = fmt::format("{}", e.acoustic.detection_probability);
     measurements["false_alarm_rate"] = fmt::format("{}", e.acoustic.false_alarm_rate);
+    measurements["dt_s"] = fmt::format("{}", walked.dt_s);
+  }
+  if (tdoa) {
+    // The facts the TDOA filter's defaults derive from (pipeline::PhysicalKeysOf).
+    if (e.uwb_tdoa.sigma_m > 0.0) measurements["tdoa_sigma_m"] = fmt::format("{}", e.uwb_tdoa.sigma_m);
+    measurements["detection_probability"] = fmt::format("{}", e.uwb_tdoa.detection_probability);
     measurements["dt_s"] = fmt::format("{}", walked.dt_s);
   }
   measurements["speed_mps"] = fmt::format("{}", walked.speed_mps);

@@ -12,6 +12,10 @@
 namespace mirage::io {
 namespace {
 
+// The recording's measurement file (ranges.csv, toa.csv or tdoa.csv) and its scenario key.
+std::string MeasurementFileKey(const RecordingFiles& f) { return f.pairwise_tdoa() ? "tdoa" : f.toa_stamps() ? "toa" : "ranges"; }
+std::string MeasurementFile(const RecordingFiles& f) { return f.pairwise_tdoa() ? f.tdoa : f.toa_stamps() ? f.toa : f.ranges; }
+
 using nlohmann::json;
 using pipeline::GroupSummary;
 
@@ -200,7 +204,7 @@ json MakeJsonReport(const Scenario& scenario, const pipeline::ExperimentResult& 
   if (scenario.recording_files) {
     const auto& f = *scenario.recording_files;
     j["recorded_data"] = {{f.toa_stamps() ? "mics" : "anchors", f.toa_stamps() ? f.mics : f.anchors},
-                          {f.toa_stamps() ? "toa" : "ranges", f.toa_stamps() ? f.toa : f.ranges},
+                          {MeasurementFileKey(f), MeasurementFile(f)},
                           {"truth", f.truth ? json(*f.truth) : json(nullptr)},
                           {"epochs", base.recording->steps.size()}};
   }
@@ -238,7 +242,7 @@ std::string FormatResultTable(const Scenario& scenario, const pipeline::Experime
   if (!result.variants.front().bound.empty()) out += fmt::format("(peb_m: the RMS of the {} position bound)\n", bound);
   if (scenario.recording_files) {
     const auto& f = *scenario.recording_files;
-    out += fmt::format("recorded data: {} ({} epochs){}\n", f.toa_stamps() ? f.toa : f.ranges, base.recording->steps.size(),
+    out += fmt::format("recorded data: {} ({} epochs){}\n", MeasurementFile(f), base.recording->steps.size(),
                        scenario.recording_files->truth ? "" : "; no truth file, so no position error");
   }
   const auto& front = summaries.front();

@@ -14,6 +14,7 @@
 #include "mirage/channel/cir_synthesizer.h"
 #include "mirage/channel/range_level_simulator.h"
 #include "mirage/channel/ranging_simulator.h"
+#include "mirage/channel/uwb_tdoa_simulator.h"
 #include "mirage/dsp/mpc_extractor.h"
 #include "mirage/eval/error_stats.h"
 #include "mirage/geometry/reflector_3d.h"
@@ -282,6 +283,59 @@ void ReadAcoustic(YamlMap& m, Experiment& e, const core::PhysicalKeys& keys) {
   }
 }
 
+// The UWB TDOA model: the simulator's keys and the box obstacles whose crossing biases a leg.
+void ReadUwbTdoa(YamlMap& m, Experiment& e, const core::PhysicalKeys& keys) {
+  if (e.medium.kind != core::MediumKind::kRadio) m.Fail("model", "the uwb_tdoa model needs medium: {kind: radio}");
+  std::set<std::string> names;
+  for (auto& b : m.Has("boxes") ? m.MapList("boxes", true) : std::vector<YamlMap>()) {
+    const std::string name = b.String("name");
+    if (!names.insert(name).second) b.Fail("name", "duplicate box name '" + name + "'");
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    const Vec3 lo = b.Point3("min_m", nan), hi = b.Point3("max_m", nan);
+    if (!std::isfinite(lo.z())) b.Fail("min_m", "give the corner as [x, y, z] (m)");
+    if (!std::isfinite(hi.z())) b.Fail("max_m", "give the corner as [x, y, z] (m)");
+    if (!((hi - lo).minCoeff() > 0.0)) b.Fail("max_m", "must exceed min_m in x, y and z (the box has no volume)");
+    b.RejectUnknownKeys();
+    for (auto& face : geometry::BoxReflectors(name, lo, hi)) e.reflectors.push_back(std::move(face));
+  }
+  ReadOptions(m, channel::UwbTdoaOptionsDescriptor(), keys, e.uwb_tdoa);
+  // A tag inside a box would have every leg blocked by the box it sits in, not behind it.
+  for (const auto& t : e.trajectories) {
+    for (const auto& s : geometry::SampleTrajectory(t.waypoints_m, t.speed_mps, t.dt_s, Vec2::Zero(), t.turn_radius_m)) {
+      const Vec3 p = pipeline::TrajectoryPositionAt(t, s);
+      for (std::size_t r = 0; r + 5 < e.reflectors.size(); r += 6) {
+        const Vec3 lo(e.reflectors[r].origin_m.x() - e.reflectors[r].u_half_m, e.reflectors[r].origin_m.y() - e.reflectors[r].v_half_m,
+                      e.reflectors[r].origin_m.z());
+        const Vec3 hi(e.reflectors[r].origin_m.x() + e.reflectors[r].u_half_m, e.reflectors[r].origin_m.y() + e.reflectors[r].v_half_m,
+                      e.reflectors[r + 1].origin_m.z());
+        if ((p - lo).minCoeff() > 0.0 && (hi - p).minCoeff() > 0.0) {
+          m.Fail("boxes", fmt::format("trajectory '{}' passes through box '{}' at t = {} s", t.name,
+                                      e.reflectors[r].name.substr(0, e.reflectors[r].name.size() - 7), FormatValue(s.t_s)));
+        }
+      }
+    }
+  }
+}
+
+// `measurements: {model: recorded, anchors, tdoa, ...}`: pairwise differences (tdoa.csv) and the
+// facts the TDOA filters' defaults derive from.
+void ReadRecordedTdoa(YamlMap& m, Experiment& e, RecordingFiles& f) {
+  for (const char* key : {"ranges", "mics", "toa"}) {
+    if (m.Has(key)) m.Fail(key, "a recording has either anchors and tdoa (pairwise differences), anchors and ranges, or mics and toa");
+  }
+  if (!m.Has("anchors")) m.Fail("anchors", "missing: a recording of differences needs anchors (anchors.csv with z_m) and tdoa (tdoa.csv)");
+  for (const char* key : {"epoch_window_s", "range_sigma_m", "height_m", "stamp_sigma_s", "false_alarm_rate"}) {
+    if (m.Has(key)) m.Fail(key, "not used with tdoa (give the differences' noise as tdoa_sigma_m)");
+  }
+  if (e.medium.kind != core::MediumKind::kRadio) m.Fail("model", "a recording of UWB differences (tdoa) needs medium: {kind: radio}");
+  f.anchors = m.FilePath("anchors");
+  f.tdoa = m.FilePath("tdoa");
+  if (m.Has("tdoa_sigma_m")) e.recorded_range_sigma_m = m.NumberInRange("tdoa_sigma_m", 0.15, 1e-9, kHuge, "m");
+  if (m.Has("detection_probability")) {
+    e.recorded_detection_probability = m.NumberInRange("detection_probability", 1.0, 0.0, 1.0, "");
+  }
+}
+
 // `measurements: {model: recorded, mics, toa, ...}`: a sound sender's arrival-time stamps and the
 // facts the acoustic methods need that the files cannot show (the sender's height, the stamps'
 // noise as the physical range noise, detection and false alarms).
@@ -327,14 +381,19 @@ void ReadMeasurements(YamlMap m, Experiment& e, std::optional<RecordingFiles>& f
   } else if (model == "acoustic") {
     e.measurement_model = MeasurementModel::kAcoustic;
     ReadAcoustic(m, e, keys);
+  } else if (model == "uwb_tdoa") {
+    e.measurement_model = MeasurementModel::kUwbTdoa;
+    ReadUwbTdoa(m, e, keys);
   } else if (model == "recorded") {
     e.measurement_model = MeasurementModel::kRecorded;
     RecordingFiles f;
-    if (m.Has("mics") || m.Has("toa")) {
+    if (m.Has("tdoa")) {
+      ReadRecordedTdoa(m, e, f);
+    } else if (m.Has("mics") || m.Has("toa")) {
       ReadRecordedStamps(m, e, f);
     } else {
-      for (const char* key : {"height_m", "stamp_sigma_s", "detection_probability", "false_alarm_rate"}) {
-        if (m.Has(key)) m.Fail(key, "only for a recording of arrival-time stamps (mics, toa)");
+      for (const char* key : {"height_m", "stamp_sigma_s", "detection_probability", "false_alarm_rate", "tdoa_sigma_m"}) {
+        if (m.Has(key)) m.Fail(key, "only for a recording of arrival-time stamps (mics, toa) or of differences (tdoa)");
       }
       f.anchors = m.FilePath("anchors");
       f.ranges = m.FilePath("ranges");
@@ -348,7 +407,7 @@ void ReadMeasurements(YamlMap m, Experiment& e, std::optional<RecordingFiles>& f
     m.RejectUnknownKeys();
     files = f;
   } else {
-    m.Fail("model", "unknown measurement model '" + model + "' (available: cir, ranges, ranging, acoustic, recorded)");
+    m.Fail("model", "unknown measurement model '" + model + "' (available: cir, ranges, ranging, acoustic, uwb_tdoa, recorded)");
   }
 }
 
@@ -448,11 +507,11 @@ Experiment ReadExperiment(YamlMap& root, const std::string& file, const methods:
                                      "' needs its start position [x, y] (m); it cannot start itself");
   }
   if (files) LoadRecordedData(file, *files, e);
-  if (e.measurement_model != MeasurementModel::kAcoustic) {
+  if (e.measurement_model != MeasurementModel::kAcoustic && e.measurement_model != MeasurementModel::kUwbTdoa) {
     for (auto& t : recorded ? std::vector<YamlMap>() : root.MapList("trajectories", false)) {
       if (t.Has("height_amplitude_m") || t.Has("height_period_s")) {
         t.Fail(t.Has("height_amplitude_m") ? "height_amplitude_m" : "height_period_s",
-               "hand motion is simulated by measurements.model acoustic only");
+               "height motion is simulated by measurements.model acoustic and uwb_tdoa only");
       }
     }
   }
@@ -508,6 +567,15 @@ Experiment ReadExperiment(YamlMap& root, const std::string& file, const methods:
     root.Fail("measurements", "measurements.model acoustic gives arrival-time stamps, which method '" + info->name +
                                   "' does not consume (use an acoustic method)");
   }
+  const bool recorded_tdoa = e.recording && e.recording->tdoa;
+  if (info->input == methods::MethodInput::kTdoa && e.measurement_model != MeasurementModel::kUwbTdoa && !recorded_tdoa) {
+    root.Fail("measurements", "method '" + info->name + "' consumes pairwise differences: measurements.model must be "
+                              "uwb_tdoa, or recorded with anchors and tdoa");
+  }
+  if (info->input != methods::MethodInput::kTdoa && (recorded_tdoa || e.measurement_model == MeasurementModel::kUwbTdoa)) {
+    root.Fail("measurements", "the measurements are pairwise differences (uwb_tdoa, or tdoa.csv), which method '" +
+                                  info->name + "' does not consume (use tdoa_ekf)");
+  }
   if (info->input == methods::MethodInput::kLinkCirs && e.measurement_model != MeasurementModel::kCir) {
     root.Fail("measurements", "method '" + info->name + "' consumes CIRs: measurements.model must be cir");
   }
@@ -525,12 +593,16 @@ Scenario LoadScenario(const std::string& path, const ScenarioOverrides& override
   auto origins = std::make_shared<YamlOrigins>(path);
   Scenario scenario;
   scenario.file = path;
-  scenario.document = LoadYamlWithExtends(path, *origins);
+  const YAML::Node document = LoadYamlWithExtends(path, *origins);
   {
-    YamlMap root(scenario.document, "", origins);
-    RejectOldLayout(root, scenario.document);
+    YamlMap root(document, "", origins);
+    RejectOldLayout(root, document);
   }
-  for (GridVariant& g : ExpandGrid(scenario.document, origins)) {
+  // A deep copy for `mirage simulate`: the grid's variants share the document's nodes and
+  // rearrange maps on the way to their values (scenario_grid.cc), after which yaml-cpp 0.7
+  // crashes emitting the original.
+  scenario.document = YAML::Clone(document);
+  for (GridVariant& g : ExpandGrid(document, origins)) {
     YamlMap root(g.document, "", g.origins);
     std::optional<RecordingFiles> files;
     pipeline::Variant v;

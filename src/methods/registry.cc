@@ -6,6 +6,7 @@
 #include "mirage/methods/mint/mint_estimator.h"
 #include "mirage/methods/range_ekf/range_ekf.h"
 #include "mirage/methods/slam/slam_estimator.h"
+#include "mirage/methods/tdoa_ekf/tdoa_ekf.h"
 
 namespace mirage::methods {
 namespace {
@@ -73,6 +74,19 @@ std::vector<MethodInfo> BuiltIn() {
         "Bordoy 2020 ch. 5", acoustic::AcousticOptionsDescriptor());
     m.input = MethodInput::kToaStamps;
     m.start_sigma_m = [](const void* o) { return static_cast<const acoustic::AcousticOptions*>(o)->initial_position_sigma_m; };
+    out.push_back(std::move(m));
+  }
+  {
+    auto m = Entry<tdoa_ekf::TdoaEkfOptions, tdoa_ekf::TdoaEkf>(
+        "tdoa_ekf", "a 3-D filter on pairwise TDOA (UWB): robust EKF (Hampel), gated EKF or plain EKF",
+        "Bordoy 2020 Sec. 5.2 (the REKF) on UWB TDOA rows", tdoa_ekf::TdoaEkfOptionsDescriptor());
+    m.input = MethodInput::kTdoa;
+    m.start_sigma_m = [](const void* o) { return static_cast<const tdoa_ekf::TdoaEkfOptions*>(o)->initial_position_sigma_m; };
+    m.self_initializes = true;
+    m.check = [](const void*, const World& world) -> std::vector<std::string> {
+      if (world.anchors.size() < 4) return {"anchors: a 3-D position from differences needs at least 4 anchors"};
+      return {};
+    };
     out.push_back(std::move(m));
   }
   return out;

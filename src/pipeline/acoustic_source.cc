@@ -5,7 +5,6 @@
 #include <chrono>
 #include <limits>
 #include <cmath>
-#include <numbers>
 
 #include "mirage/channel/acoustic_stamps.h"
 #include "mirage/pipeline/anchor_channel_source.h"
@@ -41,12 +40,7 @@ void AcousticSource::SimulateImuOnce() {
   for (auto& s : imu_) s.sensor_id = "imu";
 }
 
-Vec3 AcousticSource::TruthAt(std::size_t k) const {
-  const auto& s = samples_[k];
-  const double z_m = trajectory_.height_m +
-                     trajectory_.height_amplitude_m * std::sin(2.0 * std::numbers::pi * s.t_s / trajectory_.height_period_s);
-  return {s.position_m.x(), s.position_m.y(), z_m};
-}
+Vec3 AcousticSource::TruthAt(std::size_t k) const { return TrajectoryPositionAt(trajectory_, samples_[k]); }
 
 std::optional<std::vector<Vec3>> AcousticSource::TrueStart() const { return std::vector<Vec3>{TruthAt(0)}; }
 

@@ -2,10 +2,17 @@
 #include "mirage/pipeline/experiment.h"
 
 #include <algorithm>
+#include <cmath>
+#include <numbers>
 
 #include <fmt/format.h>
 
 namespace mirage::pipeline {
+
+Vec3 TrajectoryPositionAt(const TrajectorySpec& t, const geometry::TrajectorySample& s) {
+  const double z_m = t.height_m + t.height_amplitude_m * std::sin(2.0 * std::numbers::pi * s.t_s / t.height_period_s);
+  return {s.position_m.x(), s.position_m.y(), z_m};
+}
 
 MethodSpec BindMethod(const methods::MethodInfo& info, std::shared_ptr<const void> options) {
   const methods::MethodInfo* method = &info;
@@ -64,6 +71,11 @@ core::PhysicalKeys PhysicalKeysOf(const Experiment& e) {
       keys.range_sigma_m = e.medium.speed_mps * e.acoustic.stamp_sigma_s;
       keys.detection_probability = e.acoustic.detection_probability;
       keys.clutter_rate = e.acoustic.false_alarm_rate;
+      break;
+    case MeasurementModel::kUwbTdoa:
+      // The noise of one reported difference takes the range noise's place.
+      if (e.uwb_tdoa.sigma_m > 0.0) keys.range_sigma_m = e.uwb_tdoa.sigma_m;
+      keys.detection_probability = e.uwb_tdoa.detection_probability;
       break;
     case MeasurementModel::kRangeLevel:
       keys.detection_probability = e.range_level.detection_probability;

@@ -20,6 +20,7 @@
 #include "mirage/pipeline/link_source.h"
 #include "mirage/pipeline/parallel_jobs.h"
 #include "mirage/pipeline/recorded_source.h"
+#include "mirage/pipeline/uwb_tdoa_source.h"
 #include "mirage/pipeline/wall_frame.h"
 
 namespace mirage::pipeline {
@@ -112,7 +113,7 @@ void FinishHealth(const geometry::FloorPlan& plan, const eval::DivergenceRule& r
   }
   if (uncertain) reasons.push_back(fmt::format("position uncertainty above {:g} m at the end", rule.threshold_m));
   if (outside) reasons.push_back("estimate outside the floor plan at the end");
-  if (h.steps > 0 && 2 * h.steps_without_association > h.steps) reasons.push_back("no measurement used at most epochs");
+  if (h.steps > h.deferred_steps && 2 * h.steps_without_association > h.steps - h.deferred_steps) reasons.push_back("no measurement used at most epochs");
   if (!h.started) reasons.push_back("never started: no epoch let the estimator start itself");
   h.drifted = !reasons.empty();
   for (std::size_t i = 0; i < reasons.size(); ++i) h.drift_reason += (i > 0 ? "; " : "") + reasons[i];
@@ -133,6 +134,8 @@ RunRecord RunOne(const VariantContext& vc, int variant, int group, int run, cons
     source = std::make_unique<LinkSource>(*vc.links, run);
   } else if (e.measurement_model == MeasurementModel::kAcoustic) {
     source = std::make_unique<AcousticSource>(e, group, run);
+  } else if (e.measurement_model == MeasurementModel::kUwbTdoa) {
+    source = std::make_unique<UwbTdoaSource>(e, group, run);
   } else {
     auto s = std::make_unique<AnchorChannelSource>(*vc.anchors, group, run);
     anchor_source = s.get();
@@ -260,7 +263,11 @@ RunRecord RunOne(const VariantContext& vc, int variant, int group, int run, cons
 
     RunHealth& h = record.health;
     ++h.steps;
-    if (out.associations == 0) ++h.steps_without_association;
+    if (out.deferred) {
+      ++h.deferred_steps;
+    } else if (out.associations == 0) {
+      ++h.steps_without_association;
+    }
     if (out.relocalized) ++h.lost_track_episodes;
     if (out.rejected_update) ++h.rejected_updates;
     if (out.constrained) ++h.constrained_steps;
@@ -290,6 +297,18 @@ RunRecord RunOne(const VariantContext& vc, int variant, int group, int run, cons
   }
   FinishHealth(e.plan, e.divergence, record);
   return record;
+}
+
+// The truth of a source that samples a 3-D trajectory (one entry per sample): its start, then
+// every sample.
+template <class Source>
+void TruthOfSamples(const Source& source, methods::BoundInput& truth) {
+  truth.t_s.push_back(source.start_s());
+  truth.positions_m.push_back(*source.TrueStart());
+  for (std::size_t k = 0; k < source.samples().size(); ++k) {
+    truth.t_s.push_back(source.samples()[k].t_s);
+    truth.positions_m.push_back({source.TruthAt(k)});
+  }
 }
 
 }  // namespace
@@ -385,13 +404,9 @@ ExperimentResult RunExperiment(std::span<const Variant> variants, const Progress
           }
         } else if (e.measurement_model == MeasurementModel::kAcoustic) {
           // Run 0's trajectory, hand motion included: one entry per emission.
-          const AcousticSource source(e, j.group, 0);
-          truth.t_s.push_back(source.start_s());
-          truth.positions_m.push_back(*source.TrueStart());
-          for (std::size_t k = 0; k < source.samples().size(); ++k) {
-            truth.t_s.push_back(source.samples()[k].t_s);
-            truth.positions_m.push_back({source.TruthAt(k)});
-          }
+          TruthOfSamples(AcousticSource(e, j.group, 0), truth);
+        } else if (e.measurement_model == MeasurementModel::kUwbTdoa) {
+          TruthOfSamples(UwbTdoaSource(e, j.group, 0), truth);
         } else {
           // Run 0's trajectory: the start, then every epoch (the first at the start's time).
           AnchorChannelSource source(*vc.anchors, j.group, 0);

@@ -6,6 +6,7 @@
 # the trajectory and the map; bad recorded files stop the run with "FILE:LINE:" and exit 2.
 # Acoustic stamps (issue 26 item 9): the replay of mics.csv/toa.csv gives every row of the
 # simulated run's track (estimate, truth, error) bit for bit; bad stamp files exit 2 with FILE:LINE.
+# UWB TDOA: the same for anchors.csv/tdoa.csv, and the filter starts itself without truth.csv.
 # Usage: recorded_test.sh MIRAGE_BINARY EXAMPLES_DIR WORK_DIR
 set -u
 
@@ -144,6 +145,52 @@ bad toa_unknown_mic toa.csv '6s/,M[0-9],/,M9,/' "toa.csv:6: receiver_id 'M9': un
 bad toa_backwards toa.csv '30s/^[^,]*,/0,/' "toa.csv:30: t_s '0': time goes backwards"
 bad toa_not_a_number toa.csv '8s/,[^,]*$/,0.5s/' "toa.csv:8: toa_s '0.5s': not a number"
 bad toa_nan toa.csv '9s/,[^,]*$/,nan/' "toa.csv:9: toa_s 'nan': must be finite"
+
+# UWB TDOA (issue 26 item 9): simulate, replay tdoa.csv, compare every column but the run's name;
+# the replay without truth starts itself; a grid that varies the measurements cannot be written.
+tdoa_scenario=$(dirname "$0")/data/uwb_tdoa_short.yaml
+tdoa=$work/uwb_tdoa_short
+if ! "$mirage" simulate "$tdoa_scenario" --out "$tdoa" --quiet; then
+  fail "tdoa: mirage simulate failed"
+else
+  "$mirage" run "$tdoa/scenario.yaml" --quiet --csv "$tdoa/replay" --json "$tdoa/replay.json" || fail "tdoa: replay failed"
+  "$mirage" run "$tdoa_scenario" --quiet --csv "$tdoa/direct" --json "$tdoa/direct.json" || fail "tdoa: direct run failed"
+  python3 - "$tdoa/replay.json" "$tdoa/direct.json" <<'PY' || fail "tdoa: the replay's report differs"
+import json, sys
+replay, direct = (json.load(open(p)) for p in sys.argv[1:])
+for key in ("position_error_m", "final_error_m", "steps", "tdoa_ekf"):
+    assert replay[key] == direct[key], (key, replay[key], direct[key])
+assert replay["recorded_data"]["tdoa"].endswith("tdoa.csv"), replay["recorded_data"]
+PY
+  replay_rows=$(cut -d, -f2- "$tdoa/replay/tracks.csv" | tail -n +2)
+  direct_rows=$(cut -d, -f2- "$tdoa/direct/tracks.csv" | tail -n +2)
+  if [[ -z $replay_rows || $replay_rows != "$direct_rows" ]]; then
+    fail "tdoa: the replayed track differs from the simulated run's track"
+  else
+    echo "ok   tdoa: replay of anchors.csv/tdoa.csv == simulated run ($(wc -l <<<"$replay_rows") steps)"
+  fi
+  grep -v '^  truth:' "$tdoa/scenario.yaml" >"$tdoa/no_truth.yaml"
+  if ! "$mirage" run "$tdoa/no_truth.yaml" --quiet --csv "$tdoa/no_truth" ||
+    [[ $(awk -F, 'NR > 1 && $7 != "" { n++ } END { print n + 0 }' "$tdoa/no_truth/tracks.csv") -lt 1000 ]]; then
+    fail "tdoa without truth: the filter did not start itself"
+  else
+    echo "ok   tdoa without truth: started itself from the first differences"
+  fi
+fi
+printf 'extends: %s\ngrid:\n  - {measurements.sigma_m: [0.1, 0.2]}\n' "$(realpath "$tdoa_scenario")" >"$work/tdoa_grid.yaml"
+"$mirage" simulate "$work/tdoa_grid.yaml" --out "$work/tdoa_grid" --quiet 2>"$work/tdoa_grid.err"
+status=$?
+if [[ $status -ne 2 || $(cat "$work/tdoa_grid.err") != *"the grid varies measurements.sigma_m"* ]]; then
+  fail "tdoa grid: exit $status, '$(cat "$work/tdoa_grid.err")'"
+else
+  echo "ok   tdoa grid: $(cat "$work/tdoa_grid.err")"
+fi
+
+base=$tdoa
+bad tdoa_unknown_anchor tdoa.csv '6s/,A[0-7],/,A9,/' "tdoa.csv:6: id_i 'A9': unknown anchor"
+bad tdoa_backwards tdoa.csv '30s/^[^,]*,/0,/' "tdoa.csv:30: t_s '0': time goes backwards"
+bad tdoa_nan tdoa.csv '9s/,[^,]*$/,nan/' "tdoa.csv:9: tdoa_m 'nan': must be finite"
+bad tdoa_anchor_without_z anchors.csv '3s/,[^,]*$//' "anchors.csv:3: expected 4 fields"
 
 [[ $failures -eq 0 ]] || exit 1
 echo "all recorded-data cases passed"

@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include "e2e/find_variant.h"
+
 #include "mirage/io/scenario.h"
 #include "mirage/pipeline/experiment.h"
 #include "mirage/pipeline/runner.h"
@@ -13,14 +15,6 @@
 
 namespace mirage::pipeline {
 namespace {
-
-const VariantSummary& Find(const std::vector<VariantSummary>& summaries, const std::string& name) {
-  for (const auto& v : summaries) {
-    if (v.name == name) return v;
-  }
-  ADD_FAILURE() << "no variant " << name;
-  return summaries.front();
-}
 
 TEST(AcousticHeight, FloorEchoesPinTheHeight) {
   io::ScenarioOverrides overrides;
@@ -35,11 +29,11 @@ TEST(AcousticHeight, FloorEchoesPinTheHeight) {
     ASSERT_TRUE(v.overall.vdop.has_value());
   }
   const auto& estimated = summaries.front();  // echoes, t_0 from the vote
-  const auto& known = Find(summaries, "method.ground_echo.echoes=true, method.ground_echo.sending_time=known");
-  const auto& tdoa = Find(summaries, "method.ground_echo.echoes=true, method.ground_echo.sending_time=unknown");
-  const auto& known_without = Find(summaries, "method.ground_echo.echoes=false, method.ground_echo.sending_time=known");
-  const auto& tdoa_without = Find(summaries, "method.ground_echo.echoes=false, method.ground_echo.sending_time=unknown");
-  const auto& estimated_without = Find(summaries, "method.ground_echo.echoes=false");
+  const auto& known = testing::FindVariant(summaries, "method.ground_echo.echoes=true, method.ground_echo.sending_time=known");
+  const auto& tdoa = testing::FindVariant(summaries, "method.ground_echo.echoes=true, method.ground_echo.sending_time=unknown");
+  const auto& known_without = testing::FindVariant(summaries, "method.ground_echo.echoes=false, method.ground_echo.sending_time=known");
+  const auto& tdoa_without = testing::FindVariant(summaries, "method.ground_echo.echoes=false, method.ground_echo.sending_time=unknown");
+  const auto& estimated_without = testing::FindVariant(summaries, "method.ground_echo.echoes=false");
   // Sec. 8.5: VDOP with echoes at most ~1.2, the median height error about a centimetre.
   for (const auto* v : {&estimated, &known}) {
     SCOPED_TRACE(v->name);

@@ -24,6 +24,7 @@
 #include "mirage/methods/acoustic/acoustic_options.h"
 #include "mirage/methods/range_ekf/range_ekf.h"
 #include "mirage/methods/slam/slam_tracker.h"
+#include "mirage/methods/tdoa_ekf/tdoa_ekf.h"
 
 namespace mirage::io {
 namespace {
@@ -96,6 +97,7 @@ void ExpectMethodOptions(const std::string& file, const Experiment& e) {
   if (e.method.name == "coop") return ExpectMethodOptions(file, e, methods::coop::CoopOptionsDescriptor());
   if (e.method.name == "range_ekf") return ExpectMethodOptions(file, e, methods::range_ekf::RangeEkfOptionsDescriptor());
   if (e.method.name == "acoustic") return ExpectMethodOptions(file, e, methods::acoustic::AcousticOptionsDescriptor());
+  if (e.method.name == "tdoa_ekf") return ExpectMethodOptions(file, e, methods::tdoa_ekf::TdoaEkfOptionsDescriptor());
   ADD_FAILURE() << "no options struct known for method '" << e.method.name << "': add it here";
 }
 

@@ -19,6 +19,8 @@
 
 #include <gtest/gtest.h>
 
+#include "io/scenario_errors.h"
+
 #include "mirage/io/input_error.h"
 #include "mirage/methods/acoustic/acoustic_options.h"
 #include "mirage/methods/coop/coop_tracker.h"
@@ -31,6 +33,9 @@ namespace mirage::io {
 namespace {
 
 namespace fs = std::filesystem;
+using testing::ErrorOf;
+using testing::ExpectError;
+using testing::WithLines;
 using pipeline::Experiment;
 using pipeline::MeasurementModel;
 
@@ -123,47 +128,7 @@ const char* const kCoop =
     "  - {agents: [2, 3], method.anchor_links: [false, true]}\n"                            // 37
     "  - {channel.pulse.duration_s: [1.0e-9, 0.5e-9], agents: [2]}\n";                      // 38
 
-// `text` with the given lines (1-based) replaced by their text (several lines allowed, "" removes
-// the line).
-std::string WithLines(const std::string& text, const std::map<int, std::string>& lines) {
-  std::string out;
-  std::size_t start = 0;
-  for (int n = 1; start < text.size(); ++n) {
-    const std::size_t end = text.find('\n', start);
-    const auto it = lines.find(n);
-    if (it == lines.end()) {
-      out += text.substr(start, end - start + 1);
-    } else if (!it->second.empty()) {
-      out += it->second + "\n";
-    }
-    start = end + 1;
-  }
-  return out;
-}
-
 std::string TinyWithLine(int line, const std::string& text) { return WithLines(kTiny, {{line, text}}); }
-
-// The InputError message of loading `path` (fails the test if it loads).
-std::string ErrorOf(const std::string& path, const ScenarioOverrides& overrides = {}) {
-  try {
-    LoadScenario(path, overrides);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << path << " loaded without an error";
-  return {};
-}
-
-// Expects the error to name the file, the line as ":<line>:" (unless 0) and every fragment, on one line.
-void ExpectError(const std::string& message, const std::string& file, int line, const std::vector<std::string>& fragments) {
-  EXPECT_NE(message.find(file), std::string::npos) << "no file name in: " << message;
-  if (line > 0) {
-    EXPECT_NE(message.find(file + ":" + std::to_string(line) + ":"), std::string::npos)
-        << "no '" << file << ":" << line << ":' in: " << message;
-  }
-  for (const auto& f : fragments) EXPECT_NE(message.find(f), std::string::npos) << "no '" << f << "' in: " << message;
-  EXPECT_EQ(message.find('\n'), std::string::npos) << "not one line: " << message;
-}
 
 class ScenarioFiles : public ::testing::Test {
  protected:

@@ -33,6 +33,17 @@ inline DerivedDefault WalkingTime(double distance_m) {
           .compute = [distance_m](const PhysicalKeys& keys) { return distance_m / *keys.speed_mps; }};
 }
 
+/// range_sigma_m / speed_mps (s): the time in which the walker moves one standard deviation of a
+/// range, for windows within which its motion stays below the noise; at most max_s (a walker at
+/// rest would make it infinite).
+inline DerivedDefault RangeSigmaWalkingTime(double max_s) {
+  return {.formula = "range_sigma_m / speed_mps, at most " + FormatNumber(max_s) + " s",
+          .needs = {PhysicalKey::kRangeSigma, PhysicalKey::kSpeed},
+          .compute = [max_s](const PhysicalKeys& keys) {
+            return *keys.speed_mps * max_s > *keys.range_sigma_m ? *keys.range_sigma_m / *keys.speed_mps : max_s;
+          }};
+}
+
 /// speed_mps * dt_s + margin_m (m): one step of motion plus a margin.
 inline DerivedDefault StepLengthPlus(double margin_m) {
   return {.formula = "speed_mps * dt_s + " + FormatNumber(margin_m) + " m",

@@ -57,6 +57,11 @@ Reflector3 HorizontalReflector(std::string name, const Vec2& centre_m, double x_
 /// a wall or a partition.
 Reflector3 VerticalReflector(std::string name, const Vec2& a_m, const Vec2& b_m, double z0_m, double z1_m,
                              double reflection_coeff = 1.0);
+/// The six faces of the axis-aligned box [lo_m, hi_m] (lo_m < hi_m in every coordinate), named
+/// "<name> bottom", "<name> top", "<name> y-", "<name> x+", "<name> y+", "<name> x-", blocking, with
+/// reflection_coeff: an obstacle (a crate, a cabinet) that a straight leg crosses twice.
+std::vector<Reflector3> BoxReflectors(const std::string& name, const Vec3& lo_m, const Vec3& hi_m,
+                                      double reflection_coeff = 1.0);
 /// A shoebox hall [0, length_x_m] x [0, length_y_m] x [0, height_m]: "floor", "ceiling" and the
 /// walls "y=0", "x=max", "y=max", "x=0" in that order, all with reflection_coeff.
 std::vector<Reflector3> ShoeboxReflectors(double length_x_m, double length_y_m, double height_m,

@@ -47,6 +47,9 @@ struct StepOutput {
   bool relocalized = false;           ///< the track was declared lost and restarted
   bool constrained = false;           ///< a constraint (the floor plan, a speed limit) moved the estimate
   bool rejected_update = false;       ///< the update was skipped (S not positive definite)
+  /// The method kept this epoch's measurements for a later update over a window (a batch): no
+  /// update was due, so an epoch without associations is no sign of a lost track.
+  bool deferred = false;
   /// False when the method made no estimate at this epoch (a snapshot solver without a fix): the
   /// agents' estimates repeat the last ones, and the evaluation counts the epoch as a failure.
   bool fixed = true;

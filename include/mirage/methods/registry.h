@@ -24,6 +24,7 @@ enum class MethodInput {
   kRangeSets,  ///< unlabeled ranges per anchor (from MPC extraction, a ranging system or a file)
   kLinkCirs,   ///< the CIR of every link the method names (methods that extract themselves)
   kToaStamps,  ///< arrival-time stamps per receiver (acoustic), several per emission, unlabeled
+  kTdoa,       ///< pairwise differences of arrival distances (UWB TDOA), one pair per row
 };
 
 /// One registered method. Options travel type-erased (a pointer to the method's options struct,

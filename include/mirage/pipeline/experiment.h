@@ -18,6 +18,7 @@
 #include "mirage/channel/link.h"
 #include "mirage/channel/range_level_simulator.h"
 #include "mirage/channel/ranging_simulator.h"
+#include "mirage/channel/uwb_tdoa_simulator.h"
 #include "mirage/core/medium.h"
 #include "mirage/core/physical_keys.h"
 #include "mirage/core/types.h"
@@ -26,6 +27,7 @@
 #include "mirage/eval/error_stats.h"
 #include "mirage/geometry/floor_plan.h"
 #include "mirage/geometry/reflector_3d.h"
+#include "mirage/geometry/trajectory.h"
 #include "mirage/methods/estimator.h"
 #include "mirage/methods/registry.h"
 #include "mirage/methods/world.h"
@@ -42,12 +44,16 @@ struct TrajectorySpec {
   double height_m = 0.0;          ///< the agent's height z (m)
   /// Corners turned along arcs of this radius (m), >= 0; 0 turns instantly at the waypoints.
   double turn_radius_m = 0.0;
-  /// Hand motion (acoustic scenarios): the height swings as height_m + amplitude sin(2 pi t /
+  /// Height motion (acoustic and UWB TDOA scenarios: a phone in the hand, a flying tag): the height swings as height_m + amplitude sin(2 pi t /
   /// period) (Bordoy 2020 Sec. 8.5: the phone moved up and down while walking). Amplitude (m),
   /// >= 0; period (s), > 0.
   double height_amplitude_m = 0.0;
   double height_period_s = 4.0;
 };
+
+/// The agent's 3-D position at a sample of its trajectory: the sample's x, y at the trajectory's
+/// height, with the hand motion's swing (TrajectorySpec::height_amplitude_m).
+Vec3 TrajectoryPositionAt(const TrajectorySpec& trajectory, const geometry::TrajectorySample& sample);
 
 /// Start offsets of the Monte-Carlo runs: run i is shifted by grid point i mod (nx * ny), the
 /// grid centred on the trajectory (Lafer 2014 Sec. 3.7: 5 x 5 points, 1 cm apart).
@@ -72,6 +78,7 @@ enum class MeasurementModel {
   kRangeLevel,  ///< ranges drawn at each path's CRLB: missed detections, Poisson clutter
   kRanging,     ///< one range per anchor at a fixed noise (a ranging system), 3-D
   kAcoustic,    ///< arrival-time stamps per microphone and emission of a sound sender (Bordoy 2020), 3-D
+  kUwbTdoa,     ///< pairwise UWB TDOA rows of a tag among anchors (channel/uwb_tdoa_simulator.h), 3-D
   kRecorded,    ///< no simulation: the ranges of a recording (anchors.csv, ranges.csv, truth.csv)
 };
 
@@ -145,11 +152,13 @@ struct Experiment {
   channel::RangeLevelOptions range_level;
   channel::RangingOptions ranging;
   channel::AcousticStampOptions acoustic;
+  channel::UwbTdoaOptions uwb_tdoa;
   InertialModel inertial = InertialModel::kNone;  ///< kAcoustic
   channel::ImuOptions imu;                        ///< InertialModel::kImu
   estimation::ConstantHeadingErrorOptions heading_error;  ///< InertialModel::kConstantHeadingError
   /// kAcoustic: the hall's reflecting surfaces (the floor plan's walls, floor and ceiling, then
-  /// the partitions and tables), in the order stamps' labels index them.
+  /// the partitions and tables), in the order stamps' labels index them. kUwbTdoa: the obstacles
+  /// (the faces of its boxes) whose crossing biases a leg.
   std::vector<geometry::Reflector3> reflectors;
   std::shared_ptr<const Recording> recording;  ///< kRecorded
   double epoch_window_s = 0.0;                  ///< recorded data: the epoch rule's window

@@ -69,6 +69,7 @@ struct WallScore {
 struct RunHealth {
   int steps = 0;
   int steps_without_association = 0;  ///< epochs whose update used no measurement
+  int deferred_steps = 0;             ///< epochs whose measurements waited for a later update
   int lost_track_episodes = 0;        ///< restarts of a lost track
   int rejected_updates = 0;           ///< updates skipped (S not positive definite)
   int constrained_steps = 0;          ///< epochs whose estimate a constraint moved

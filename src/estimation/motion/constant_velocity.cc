@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 
 #include "mirage/estimation/covariance_ops.h"
+#include "mirage/estimation/state.h"
 
 namespace mirage::estimation {
 
@@ -63,6 +64,21 @@ void ConstantVelocity::Apply(State& state, double dt) const {
     assert(state.layout().At(BlockKey(velocity_type, m)).offset == state.layout().At(position).offset + d);
     CovarianceOps::PropagateBlock(state, position, F, Q);
   }
+}
+
+State StartAtRest(int dimension, double t_s, const Vec3& position_m, const Eigen::Matrix3d& position_covariance_m2,
+                  double velocity_sigma_mps) {
+  assert(dimension == 2 || dimension == 3);
+  const int d = dimension;
+  StateLayout layout;
+  layout.Append(d == 2 ? blocks::kPosition : blocks::kPosition3, 0);
+  layout.Append(d == 2 ? blocks::kVelocity : blocks::kVelocity3, 0);
+  Eigen::VectorXd mean = Eigen::VectorXd::Zero(2 * d);
+  mean.head(d) = position_m.head(d);
+  Eigen::MatrixXd P = Eigen::MatrixXd::Zero(2 * d, 2 * d);
+  P.topLeftCorner(d, d) = position_covariance_m2.topLeftCorner(d, d);
+  P.bottomRightCorner(d, d) = velocity_sigma_mps * velocity_sigma_mps * Eigen::MatrixXd::Identity(d, d);
+  return State(layout, mean, P, t_s);
 }
 
 }  // namespace mirage::estimation

@@ -21,7 +21,6 @@ namespace {
 namespace blocks = estimation::blocks;
 
 const estimation::BlockType& PositionType(bool planar) { return planar ? blocks::kPosition : blocks::kPosition3; }
-const estimation::BlockType& VelocityType(bool planar) { return planar ? blocks::kVelocity : blocks::kVelocity3; }
 
 }  // namespace
 
@@ -78,17 +77,7 @@ RangeEkf::RangeEkf(const RangeEkfOptions& options, const World& world)
 double RangeEkf::AgentHeight() const { return world_.agent_height_m.value_or(0.0); }
 
 void RangeEkf::Start(double t_s, const Vec3& position_m, const Eigen::Matrix3d& position_covariance_m2) {
-  const int d = planar() ? 2 : 3;
-  estimation::StateLayout layout;
-  layout.Append(PositionType(planar()), 0);
-  layout.Append(VelocityType(planar()), 0);
-  Eigen::VectorXd mean = Eigen::VectorXd::Zero(2 * d);
-  mean.head(d) = position_m.head(d);
-  Eigen::MatrixXd P = Eigen::MatrixXd::Zero(2 * d, 2 * d);
-  P.topLeftCorner(d, d) = position_covariance_m2.topLeftCorner(d, d);
-  const double sv = options_.initial_velocity_sigma_mps;
-  P.bottomRightCorner(d, d) = sv * sv * Eigen::MatrixXd::Identity(d, d);
-  state_ = estimation::State(layout, mean, P, t_s);
+  state_ = estimation::StartAtRest(planar() ? 2 : 3, t_s, position_m, position_covariance_m2, options_.initial_velocity_sigma_mps);
 }
 
 void RangeEkf::Initialize(const Prior& prior) {

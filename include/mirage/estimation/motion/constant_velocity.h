@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "mirage/core/options_descriptor.h"
+#include "mirage/core/types.h"
 #include "mirage/estimation/motion/propagator.h"
 #include "mirage/estimation/state.h"
 
@@ -48,5 +49,12 @@ class ConstantVelocity final : public Propagator {
   int dimension_;
   std::vector<int> agents_;
 };
+
+/// The state of agent 0 of a constant-velocity model in `dimension` (2 or 3) dimensions at rest
+/// at t_s: its position block (mean position_m's first `dimension` coordinates, covariance the
+/// top-left block of position_covariance_m2) then its velocity block (mean 0, variance
+/// velocity_sigma_mps^2 per axis), uncorrelated.
+State StartAtRest(int dimension, double t_s, const Vec3& position_m, const Eigen::Matrix3d& position_covariance_m2,
+                  double velocity_sigma_mps);
 
 }  // namespace mirage::estimation
