@@ -7,6 +7,7 @@
 #include <map>
 #include <memory>
 #include <set>
+#include <span>
 
 #include <fmt/format.h>
 
@@ -286,6 +287,7 @@ void ReadAcoustic(YamlMap& m, Experiment& e, const core::PhysicalKeys& keys) {
 // The UWB TDOA model: the simulator's keys and the box obstacles whose crossing biases a leg.
 void ReadUwbTdoa(YamlMap& m, Experiment& e, const core::PhysicalKeys& keys) {
   if (e.medium.kind != core::MediumKind::kRadio) m.Fail("model", "the uwb_tdoa model needs medium: {kind: radio}");
+  const double floor_z = e.plan.floor_z_m(), ceiling_z = e.plan.ceiling_z_m();
   std::set<std::string> names;
   for (auto& b : m.Has("boxes") ? m.MapList("boxes", true) : std::vector<YamlMap>()) {
     const std::string name = b.String("name");
@@ -295,22 +297,53 @@ void ReadUwbTdoa(YamlMap& m, Experiment& e, const core::PhysicalKeys& keys) {
     if (!std::isfinite(lo.z())) b.Fail("min_m", "give the corner as [x, y, z] (m)");
     if (!std::isfinite(hi.z())) b.Fail("max_m", "give the corner as [x, y, z] (m)");
     if (!((hi - lo).minCoeff() > 0.0)) b.Fail("max_m", "must exceed min_m in x, y and z (the box has no volume)");
+    if (lo.z() < floor_z || hi.z() > ceiling_z) {
+      b.Fail(lo.z() < floor_z ? "min_m" : "max_m", fmt::format("the box must stand between the floor ({} m) and the ceiling", FormatValue(floor_z)));
+    }
+    if (!e.plan.walls().empty()) {
+      for (const Vec2& corner : {Vec2(lo.x(), lo.y()), Vec2(hi.x(), lo.y()), Vec2(hi.x(), hi.y()), Vec2(lo.x(), hi.y())}) {
+        CheckInside(e.plan, corner, b, "max_m", "box '" + name + "' corner");
+      }
+    }
+    for (const auto& a : e.anchors) {
+      if ((a.position_m - lo).minCoeff() > 0.0 && (hi - a.position_m).minCoeff() > 0.0) {
+        b.Fail("min_m", "anchor '" + a.id + "' is inside box '" + name + "' (every leg to it would be blocked)");
+      }
+    }
     b.RejectUnknownKeys();
     for (auto& face : geometry::BoxReflectors(name, lo, hi)) e.reflectors.push_back(std::move(face));
   }
   ReadOptions(m, channel::UwbTdoaOptionsDescriptor(), keys, e.uwb_tdoa);
-  // A tag inside a box would have every leg blocked by the box it sits in, not behind it.
   for (const auto& t : e.trajectories) {
-    for (const auto& s : geometry::SampleTrajectory(t.waypoints_m, t.speed_mps, t.dt_s, Vec2::Zero(), t.turn_radius_m)) {
-      const Vec3 p = pipeline::TrajectoryPositionAt(t, s);
-      for (std::size_t r = 0; r + 5 < e.reflectors.size(); r += 6) {
-        const Vec3 lo(e.reflectors[r].origin_m.x() - e.reflectors[r].u_half_m, e.reflectors[r].origin_m.y() - e.reflectors[r].v_half_m,
-                      e.reflectors[r].origin_m.z());
-        const Vec3 hi(e.reflectors[r].origin_m.x() + e.reflectors[r].u_half_m, e.reflectors[r].origin_m.y() + e.reflectors[r].v_half_m,
-                      e.reflectors[r + 1].origin_m.z());
-        if ((p - lo).minCoeff() > 0.0 && (hi - p).minCoeff() > 0.0) {
-          m.Fail("boxes", fmt::format("trajectory '{}' passes through box '{}' at t = {} s", t.name,
-                                      e.reflectors[r].name.substr(0, e.reflectors[r].name.size() - 7), FormatValue(s.t_s)));
+    // One slot or more per epoch: a shorter step gives epochs without a row by construction.
+    if (t.dt_s * e.uwb_tdoa.rate_hz < 1.0 - 1e-9) {
+      m.Fail("rate_hz", fmt::format("trajectory '{}' steps every {} s, more often than one slot (1 / rate_hz = {} s): "
+                                    "give dt_s >= 1 / rate_hz",
+                                    t.name, FormatValue(t.dt_s), FormatValue(1.0 / e.uwb_tdoa.rate_hz)));
+    }
+    if (t.height_m - t.height_amplitude_m <= floor_z || t.height_m + t.height_amplitude_m >= ceiling_z) {
+      m.Fail("model", "trajectory '" + t.name + "' leaves the space between floor and ceiling (height_m +- height_amplitude_m)");
+    }
+    // A tag inside a box would have every leg blocked by the box it sits in, not behind it: no
+    // leg between consecutive samples (of every run's shifted path) may cross a face or start
+    // inside.
+    for (const Vec2& offset : GridCorners(e.run_grid)) {
+      const auto samples = geometry::SampleTrajectory(t.waypoints_m, t.speed_mps, t.dt_s, offset, t.turn_radius_m);
+      for (std::size_t k = 0; k < samples.size(); ++k) {
+        const Vec3 p = pipeline::TrajectoryPositionAt(t, samples[k]);
+        const Vec3 previous = k > 0 ? pipeline::TrajectoryPositionAt(t, samples[k - 1]) : p;
+        for (std::size_t r = 0; r + 5 < e.reflectors.size(); r += 6) {
+          const std::span<const geometry::Reflector3> faces(e.reflectors.data() + r, 6);
+          const Vec3 lo(faces[0].origin_m.x() - faces[0].u_half_m, faces[0].origin_m.y() - faces[0].v_half_m, faces[0].origin_m.z());
+          const Vec3 hi(faces[0].origin_m.x() + faces[0].u_half_m, faces[0].origin_m.y() + faces[0].v_half_m, faces[1].origin_m.z());
+          const bool inside = (p - lo).minCoeff() > 0.0 && (hi - p).minCoeff() > 0.0;
+          if (inside || !geometry::IsSegmentClear(faces, previous, p)) {
+            m.Fail("boxes", fmt::format("trajectory '{}' passes through box '{}' at t = {} s{}", t.name,
+                                        faces[0].name.substr(0, faces[0].name.size() - 7), FormatValue(samples[k].t_s),
+                                        offset.norm() > 0.0 ? fmt::format(" (shifted by the run grid's corner [{}, {}] m)",
+                                                                          FormatValue(offset.x() + 0.0), FormatValue(offset.y() + 0.0))
+                                                            : std::string()));
+          }
         }
       }
     }
@@ -544,6 +577,7 @@ Experiment ReadExperiment(YamlMap& root, const std::string& file, const methods:
     methods::World world;
     for (const auto& a : e.anchors) world.anchors.push_back({a.id, a.position_m});
     world.floor_plan = e.plan;
+    world.emission_times_known = e.measurement_model == MeasurementModel::kAcoustic && e.acoustic.emission_time_known;
     const auto problems = info->check(options.get(), world);
     if (!problems.empty()) m.FailProblem(problems.front());
   }

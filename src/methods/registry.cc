@@ -74,6 +74,15 @@ std::vector<MethodInfo> BuiltIn() {
         "Bordoy 2020 ch. 5", acoustic::AcousticOptionsDescriptor());
     m.input = MethodInput::kToaStamps;
     m.start_sigma_m = [](const void* o) { return static_cast<const acoustic::AcousticOptions*>(o)->initial_position_sigma_m; };
+    m.check = [](const void* o, const World& world) -> std::vector<std::string> {
+      const auto& options = *static_cast<const acoustic::AcousticOptions*>(o);
+      // Without the records' emission times the fixer would find no t_0 at any emission.
+      if (options.estimator == "ground_echo" && options.ground_echo.sending_time == "known" && !world.emission_times_known) {
+        return {"ground_echo.sending_time: 'known' needs the emission times in the records (measurements "
+                "emission_time_known: true in a simulation; a recording's toa.csv has none): use estimated or unknown"};
+      }
+      return {};
+    };
     out.push_back(std::move(m));
   }
   {

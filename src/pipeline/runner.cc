@@ -55,6 +55,7 @@ methods::World MakeWorld(const VariantContext& vc, const GivenPlan& given, int g
   world.channel = e.channel;
   world.mpc = e.mpc;
   world.physical = PhysicalKeysOf(e);
+  world.emission_times_known = e.measurement_model == MeasurementModel::kAcoustic && e.acoustic.emission_time_known;
   if (e.recording) {
     world.agents = {"recorded"};
     world.agent_height_m = e.recorded_height_m;
@@ -155,11 +156,16 @@ RunRecord RunOne(const VariantContext& vc, int variant, int group, int run, cons
     // Every start comes from the data.
   } else if (const auto truth = source->TrueStart(); truth && !(e.recording && e.start_m)) {
     std::vector<Vec3> start = *truth;
+    const double sigma = e.method.start_sigma_m;
     if (anchor_source != nullptr) {
       core::Rng& init = anchor_source->init_rng();
-      const double sigma = e.method.start_sigma_m;
       const Vec2 error(init.Normal(0.0, sigma), init.Normal(0.0, sigma));
       if (e.perturb_initial_position) start.front().head<2>() += error;
+    } else if (e.perturb_initial_position && !e.recording && !vc.joint) {
+      // The 3-D sources (acoustic, UWB TDOA): a draw per axis from the run's own start stream;
+      // a planar method ignores the height's.
+      core::Rng init = RunRng(e.seed, group, run).Substream("init");
+      for (int axis = 0; axis < 3; ++axis) start.front()(axis) += init.Normal(0.0, sigma);
     }
     estimator->Initialize({source->start_s(), start});
     started = true;

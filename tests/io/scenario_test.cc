@@ -18,6 +18,7 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <yaml-cpp/yaml.h>
 
 #include "io/scenario_errors.h"
 
@@ -533,6 +534,29 @@ TEST(LoadScenario, RejectsInvalidCommandLineOverrides) {
 // ---------------------------------------------------------------------------------------------
 // Small files: what the schema reads
 // ---------------------------------------------------------------------------------------------
+
+TEST_F(ScenarioFiles, RejectsAKnownSendingTimeWithoutEmissionTimesInTheRecords) {
+  // examples/acoustic_height.yaml's "known" variants read the emission times the simulator
+  // writes into the records; without them the fixer would find no sending time at any emission.
+  const std::string without = Write("no_emission_times.yaml", "extends: " + Example("acoustic_height.yaml") +
+                                                               "\nmeasurements: {emission_time_known: false}\n");
+  ExpectError(ErrorOf(without), "acoustic_height.yaml", 0,
+              {"method.ground_echo.sending_time", "'known' needs the emission times", "emission_time_known: true"});
+  EXPECT_NO_THROW(LoadScenario(Example("acoustic_height.yaml")));
+}
+
+TEST(ScenarioDocument, StaysIntactAfterTheGridIsExpanded) {
+  // `mirage simulate` writes its recorded scenario from the document; the grid's variants share
+  // and rearrange its nodes, after which yaml-cpp 0.7 crashed emitting it (the loader now keeps
+  // a deep copy).
+  const Scenario scenario = LoadScenario(Example("uwb_tdoa_3d.yaml"));
+  ASSERT_TRUE(scenario.has_grid());
+  YAML::Emitter out;
+  out << scenario.document;
+  const std::string text = out.c_str();
+  EXPECT_NE(text.find("grid"), std::string::npos);
+  EXPECT_NE(text.find("update: rekf"), std::string::npos) << "the base value, not a variant's";
+}
 
 TEST_F(ScenarioFiles, LoadsTheTinyScenarioWithDefaultsForWhatItLeavesOut) {
   // The bad-input variants below change one line of this file; it must be valid itself.

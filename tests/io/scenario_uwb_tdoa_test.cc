@@ -228,6 +228,33 @@ TEST_F(UwbTdoaScenario, RejectsATrajectoryThroughABox) {
                                             {23, ""}, {24, ""}}))));
 }
 
+TEST_F(UwbTdoaScenario, RejectsABoxOutsideTheRoomAboveTheCeilingOrAroundAnAnchor) {
+  ExpectBad("outside.yaml", {{31, "    - {name: crate, min_m: [5.0, 5.0, 0.0], max_m: [8.0, 8.0, 1.5]}"}}, 31,
+            {"max_m", "box 'crate' corner", "outside the floor plan"});
+  ExpectBad("ceiling.yaml", {{31, "    - {name: crate, min_m: [2.5, 2.5, 0.0], max_m: [4.5, 4.5, 3.5]}"}}, 31,
+            {"max_m", "between the floor"});
+  ExpectBad("anchor.yaml", {{31, "    - {name: crate, min_m: [0.1, 0.1, 0.0], max_m: [0.5, 0.5, 0.5]}"}}, 31,
+            {"anchor 'A0' is inside box 'crate'"});
+}
+
+TEST_F(UwbTdoaScenario, RejectsATrajectoryThatCrossesABoxOnlyAtARunGridOffset) {
+  // Along the crate's edge at y = 2.5 (the crate starts at 2.55): clear as written, through the
+  // crate for the run shifted by the grid's corner +0.1 m.
+  const std::map<int, std::string> along = {{19, "    waypoints_m: [[1.0, 2.5], [6.0, 2.5]]"},
+                                            {23, ""},
+                                            {24, ""},
+                                            {31, "    - {name: crate, min_m: [2.5, 2.55, 0.0], max_m: [4.5, 4.5, 1.5]}"}};
+  EXPECT_NO_THROW(LoadScenario(Write("along.yaml", WithLines(kTdoa, along))));
+  auto shifted = along;
+  shifted[3] = "runs: 1\nrun_grid: {nx: 1, ny: 2, spacing_m: 0.2}";
+  ExpectBad("shifted.yaml", shifted, 30, {"passes through box 'crate'", "shifted by the run grid's corner [0, 0.1] m"});
+}
+
+TEST_F(UwbTdoaScenario, RejectsATagBelowTheFloorAndStepsShorterThanASlot) {
+  ExpectBad("below.yaml", {{22, "    height_m: 0.5"}}, 26, {"trajectory 'laps' leaves the space between floor and ceiling"});
+  ExpectBad("short.yaml", {{21, "    dt_s: 0.005"}}, 27, {"rate_hz", "give dt_s >= 1 / rate_hz"});
+}
+
 TEST_F(UwbTdoaScenario, RejectsASoundMedium) {
   ExpectBad("sound.yaml", {{3, "runs: 1\nmedium: {kind: sound}"}}, 27, {"model", "medium: {kind: radio}"});
 }

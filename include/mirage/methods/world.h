@@ -40,6 +40,9 @@ struct World {
   channel::ChannelOptions channel;
   /// Multipath-component extraction, for methods that consume CIRs.
   dsp::MpcExtractorOptions mpc;
+  /// The records carry each emission's sending time (core::ToaStamps::emission_s): a simulation
+  /// told so (measurements.emission_time_known). A recording's toa.csv has no such column.
+  bool emission_times_known = false;
   /// The scenario's physical facts (range noise, step time, walking speed, detection, clutter):
   /// what defaults that depend on noise or motion are derived from.
   core::PhysicalKeys physical;

@@ -31,9 +31,21 @@ struct Candidate {
   Eigen::Matrix3d normal = Eigen::Matrix3d::Zero();  // J^T W J over the inliers, in 1 / sigma^2 units
 };
 
+// The anchors' best-fit plane: a point on it and its unit normal (pointing down, z <= 0).
+struct Plane {
+  Vec3 point_m = Vec3::Zero();
+  Vec3 normal = -Vec3::UnitZ();
+  [[nodiscard]] double Side(const Vec3& p_m) const { return (p_m - point_m).dot(normal); }  // > 0: below
+};
+
 // Robust Gauss-Newton from `start_m`: Hampel weights on the residuals in sigmas, with a = 1 and
-// b = 4 fixed (the noise is known). Returns the solution's inlier count and normal matrix.
-std::optional<Candidate> Solve(std::span<const TdoaRow> rows, double sigma_m, const Vec3& start_m) {
+// b = 4 fixed (the noise is known). With keep_side the search stays on the start's side of the
+// anchors' plane: near the plane the height has almost no gradient and a full step can jump to
+// the mirror image's side, which the other side's start explores. Returns the solution's inlier
+// count and normal matrix.
+std::optional<Candidate> Solve(std::span<const TdoaRow> rows, double sigma_m, const Vec3& start_m, const Plane& plane,
+                               bool keep_side) {
+  const double side = keep_side ? plane.Side(start_m) : 0.0;
   const HampelParameters hampel = HampelFromClippingPoint(1.0, 4.0);
   Vec3 p = start_m;
   for (int iteration = 0; iteration < kMaxIterations; ++iteration) {
@@ -51,8 +63,10 @@ std::optional<Candidate> Solve(std::span<const TdoaRow> rows, double sigma_m, co
       g += w * J * r;
     }
     // Levenberg-style damping keeps the step finite where the weights leave A singular.
-    const Vec3 step = (A + 1e-9 * Eigen::Matrix3d::Identity()).ldlt().solve(g);
+    Vec3 step = (A + 1e-9 * Eigen::Matrix3d::Identity()).ldlt().solve(g);
     if (!step.allFinite()) return std::nullopt;
+    // Halve a step that would cross the plane (at most 50 times: then it is below 1e-15 of it).
+    for (int halving = 0; halving < 50 && side != 0.0 && plane.Side(p + step) * side <= 0.0; ++halving) step *= 0.5;
     p += step;
     if (step.norm() < kStepTolerance_m) break;
   }
@@ -92,22 +106,41 @@ std::optional<TdoaPositionFix> FixPositionFromTdoas(std::span<const TdoaRow> row
   // spread about their centroid, the room's scale.
   Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
   for (const auto& a : anchors_m) scatter += (a - centroid_m) * (a - centroid_m).transpose();
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> plane(scatter);
-  Vec3 normal = plane.eigenvectors().col(0);
-  if (normal.z() > 0.0) normal = -normal;
+  Plane plane;
+  plane.point_m = centroid_m;
+  plane.normal = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(scatter).eigenvectors().col(0);
+  if (plane.normal.z() > 0.0) plane.normal = -plane.normal;
+  const Vec3& normal = plane.normal;
   const double spread_m = std::sqrt(scatter.trace() / static_cast<double>(anchors_m.size()));
-  std::vector<Vec3> starts = {centroid_m + spread_m * normal, centroid_m - spread_m * normal, centroid_m};
-  for (const auto& a : anchors_m) starts.push_back(0.5 * (a + centroid_m));
+  // The two off-plane starts keep their side; the others roam.
+  std::vector<std::pair<Vec3, bool>> starts = {
+      {centroid_m + spread_m * normal, true}, {centroid_m - spread_m * normal, true}, {centroid_m, false}};
+  for (const auto& a : anchors_m) starts.emplace_back(0.5 * (a + centroid_m), false);
 
   std::optional<Candidate> best;
-  for (const auto& start : starts) {
-    const auto c = Solve(rows, sigma_m, start);
+  for (const auto& [start, keep_side] : starts) {
+    const auto c = Solve(rows, sigma_m, start, plane, keep_side);
     if (!c || !c->position_m.allFinite()) continue;
     // A later start replaces an earlier solution only with more inliers or a cost lower by more
     // than 1 (one unit of chi-square: significant evidence), so that of two equally good mirror
     // images about coplanar anchors the one below them, found first, stays.
     if (!best || c->inliers > best->inliers || (c->inliers == best->inliers && c->inlier_cost < best->inlier_cost - 1.0)) {
       best = c;
+    }
+  }
+  // The mirror rule: the image of the solution in the anchors' plane explains the rows as well
+  // when they are coplanar (exactly, for coplanar anchors), and Gauss-Newton near the plane,
+  // where the height has almost no gradient, may stop on either side. Of the two, the one below
+  // the plane is kept unless the other explains more rows or costs more than 1 less.
+  if (best) {
+    const double side_m = plane.Side(best->position_m);
+    if (side_m < 0.0) {
+      const auto mirror = Solve(rows, sigma_m, best->position_m - 2.0 * side_m * normal, plane, true);
+      if (mirror && mirror->position_m.allFinite() && plane.Side(mirror->position_m) > 0.0 &&
+          (mirror->inliers > best->inliers ||
+           (mirror->inliers == best->inliers && mirror->inlier_cost <= best->inlier_cost + 1.0))) {
+        best = mirror;
+      }
     }
   }
   if (!best || best->inliers < kMinInliers || 2 * best->inliers < static_cast<int>(rows.size())) return std::nullopt;

@@ -191,9 +191,9 @@ TEST(FixPositionFromTdoas, GivesNoFixForCollinearAnchors) {
 
 // Anchors all at one height (on the ceiling) with the tag below: determined up to the mirror
 // image in the anchors' plane, so the fix is the tag or its mirror image.
-// DISABLED: fails (no fix). Every start (the centroid, the anchors pulled towards it) lies in the
-// anchors' plane, where every gradient u_j - u_i has no component along the plane's normal, so
-// Gauss-Newton never leaves the plane. With one anchor 5 cm lower the same rows fix the tag.
+// All anchors on one ceiling: in their plane every gradient u_j - u_i lacks the normal component,
+// so starts in the plane (the centroid, the anchors pulled towards it) never leave it; the starts
+// off the plane find the tag and its mirror, and the mirror rule keeps the one below.
 TEST(FixPositionFromTdoas, FixesTheTagBelowCoplanarCeilingAnchorsNotItsMirror) {
   std::vector<Vec3> ceiling;
   for (const auto& a : kRoom) ceiling.push_back(Vec3(a.x(), a.y(), 2.5));

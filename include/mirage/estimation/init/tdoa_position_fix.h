@@ -10,8 +10,10 @@
 // anchors' centroid and from each anchor pulled halfway towards it: the TDOA cost is not convex,
 // and a start near the right anchor finds the basin a centroid start can miss. The solution with
 // the most rows within 3 sigma wins; of equal counts a later start wins only with a sum of
-// squares lower by more than 1, so that of the two mirror images about coplanar anchors (equally
-// good) the one below them is kept, as for a ceiling-mounted system.
+// squares lower by more than 1. Mirror rule: a solution above the anchors' best-fit plane is
+// replaced by the solution from its mirror image when that one lies below and explains the rows
+// as well (no fewer inliers, a sum of squares at most 1 higher): about coplanar anchors both are
+// exact, and a ceiling-mounted system's tag is below (range_ekf's fix keeps the same side).
 // It is accepted when those inliers number at least 5 (4 unknowns' worth of redundancy for 3
 // coordinates plus one check), span at least 4 anchors, are at least half the rows, and the
 // weighted normal matrix is well conditioned (the geometry determines p).

@@ -2,7 +2,8 @@
 // tdoa_ekf: a 3-D constant-velocity filter on pairwise time differences of arrival in metres,
 // tdoa_m = |p - a_j| - |p - a_i| (core::TdoaMeasurement; UWB TDOA systems such as Bitcraze's Loco
 // Positioning, tdoa.csv). Row of the Jacobian: d tdoa / d p = (u_j - u_i)^T, u = (p - a) / |p - a|
-// (estimation/meas/tdoa.h); the velocity columns are 0. Three updates, for the comparison of
+// (estimation/meas/tdoa.h); the velocity columns are (t_row - t_state) (u_j - u_i)^T for a row at
+// another time than the state's (the window below), else 0. Three updates, for the comparison of
 // Bordoy 2020 ch. 5 carried to UWB TDOA:
 //   - ekf: every difference enters the plain EKF update;
 //   - gated_ekf: a difference whose innovation lies outside a chi-square gate on h P h^T + R is
@@ -18,15 +19,17 @@
 // holds for every true difference; with noise it is widened by 3 tdoa_sigma_m. It drops most
 // gross outliers (a 50 m outlier in a room of 10 m baselines) before any statistics and is on for
 // every update (baseline_gate).
-// Self-initialisation (no start point): the differences of the last init_window_s (the time in
-// which the agent moves one standard deviation of a difference) are solved for the position by
-// Gauss-Newton with Hampel weights from several starts (estimation/init/tdoa_position_fix.h).
+// Self-initialisation (no start point): once the usable differences span window_s (the time in
+// which the agent moves one standard deviation of a difference) and number at least 7, they are
+// solved for the position by Gauss-Newton with Hampel weights from several starts
+// (estimation/init/tdoa_position_fix.h); the fix is taken when it is no less certain than the
+// anchors' spread and lies inside the given floor plan, between floor and ceiling.
 // Event-driven: ekf and gated_ekf propagate to each difference's time and update with the rows of
-// that time stamp (as Bitcraze's kalman_core does). rekf collects the rows of window_s and
-// updates with all of them at once: a lone row can never outvote the six prior rows of Eq. 5.26,
+// that time stamp (as Bitcraze's kalman_core does). rekf collects the rows of window_s (at
+// least 7) and updates with all of them at once: a lone row can never outvote the six prior rows of Eq. 5.26,
 // so per-row IRLS would keep a wrong prediction forever; each row is predicted at its own time
 // from the state's mean and velocity (the constant-velocity model), its Jacobian carrying
-// d (t - t_state) in the velocity columns.
+// d (t - t_state) in the velocity columns and its variance the motion model's over the offset.
 #pragma once
 
 #include <deque>
@@ -35,6 +38,7 @@
 #include <vector>
 
 #include "mirage/core/options_descriptor.h"
+#include "mirage/estimation/init/position_fix.h"
 #include "mirage/estimation/motion/constant_velocity.h"
 #include "mirage/estimation/robust/irls_update.h"
 #include "mirage/estimation/state.h"
@@ -84,7 +88,8 @@ std::vector<std::string> Validate(const TdoaEkfOptions& options);
 /// What one update did with its rows.
 struct TdoaUpdateCounts {
   int used = 0;      ///< rows that entered with weight > 0 (all of them for ekf)
-  int rejected = 0;  ///< rows the baseline bound, the gate or a zero weight removed
+  int rejected = 0;  ///< rows the baseline bound, the gate, a zero weight or a failed update removed
+  bool failed = false;  ///< the update could not be applied (a covariance not positive definite)
 };
 
 class TdoaEkf final : public Estimator {
@@ -93,8 +98,8 @@ class TdoaEkf final : public Estimator {
   TdoaEkf(const TdoaEkfOptions& options, const World& world);
 
   void Initialize(const Prior& prior) override;
-  /// Collects the differences of the last init_window_s and starts at their robust fix once it
-  /// is determined (estimation/init/tdoa_position_fix.h).
+  /// Collects the differences of the last window_s and starts at their robust fix once it is
+  /// determined and plausible (see the file comment).
   bool InitializeFromEpoch(const core::Epoch& epoch) override;
   StepOutput Process(const core::Epoch& epoch) override;
 
@@ -107,6 +112,7 @@ class TdoaEkf final : public Estimator {
   struct Stack {
     Eigen::MatrixXd H;
     Eigen::VectorXd innovation_m;
+    Eigen::VectorXd variance_m2;  ///< each row's R: the noise plus the motion model's over its time offset
     std::vector<int> kept;
     int out_of_bound = 0;
   };
@@ -117,7 +123,12 @@ class TdoaEkf final : public Estimator {
   /// Updates state_ with the differences (each predicted at its own time from the state's).
   TdoaUpdateCounts Update(const std::vector<core::TdoaMeasurement>& tdoas);
   [[nodiscard]] AgentEstimate Estimate() const;
-  [[nodiscard]] bool InsideBaseline(const core::TdoaMeasurement& m) const;
+  /// The row has a time and a finite value, two different anchors, and (with baseline_gate) lies
+  /// within the anchors' baseline plus 3 tdoa_sigma_m (estimation/gates/tdoa_bound.h).
+  [[nodiscard]] bool Usable(const core::TdoaMeasurement& m) const;
+  /// A self-initialisation fix worth starting from: no less certain than the anchors' spread,
+  /// inside the given floor plan and between its floor and ceiling.
+  [[nodiscard]] bool Plausible(const estimation::PositionFix& fix) const;
 
   TdoaEkfOptions options_;
   World world_;
