@@ -7,7 +7,6 @@
 #include <map>
 #include <memory>
 #include <set>
-#include <span>
 
 #include <fmt/format.h>
 
@@ -288,6 +287,12 @@ void ReadAcoustic(YamlMap& m, Experiment& e, const core::PhysicalKeys& keys) {
 void ReadUwbTdoa(YamlMap& m, Experiment& e, const core::PhysicalKeys& keys) {
   if (e.medium.kind != core::MediumKind::kRadio) m.Fail("model", "the uwb_tdoa model needs medium: {kind: radio}");
   const double floor_z = e.plan.floor_z_m(), ceiling_z = e.plan.ceiling_z_m();
+  struct Box {
+    std::string name;
+    Vec3 lo_m, hi_m;
+    std::vector<geometry::Reflector3> faces;
+  };
+  std::vector<Box> boxes;
   std::set<std::string> names;
   for (auto& b : m.Has("boxes") ? m.MapList("boxes", true) : std::vector<YamlMap>()) {
     const std::string name = b.String("name");
@@ -311,7 +316,8 @@ void ReadUwbTdoa(YamlMap& m, Experiment& e, const core::PhysicalKeys& keys) {
       }
     }
     b.RejectUnknownKeys();
-    for (auto& face : geometry::BoxReflectors(name, lo, hi)) e.reflectors.push_back(std::move(face));
+    boxes.push_back({name, lo, hi, geometry::BoxReflectors(name, lo, hi)});
+    e.reflectors.insert(e.reflectors.end(), boxes.back().faces.begin(), boxes.back().faces.end());
   }
   ReadOptions(m, channel::UwbTdoaOptionsDescriptor(), keys, e.uwb_tdoa);
   for (const auto& t : e.trajectories) {
@@ -332,14 +338,11 @@ void ReadUwbTdoa(YamlMap& m, Experiment& e, const core::PhysicalKeys& keys) {
       for (std::size_t k = 0; k < samples.size(); ++k) {
         const Vec3 p = pipeline::TrajectoryPositionAt(t, samples[k]);
         const Vec3 previous = k > 0 ? pipeline::TrajectoryPositionAt(t, samples[k - 1]) : p;
-        for (std::size_t r = 0; r + 5 < e.reflectors.size(); r += 6) {
-          const std::span<const geometry::Reflector3> faces(e.reflectors.data() + r, 6);
-          const Vec3 lo(faces[0].origin_m.x() - faces[0].u_half_m, faces[0].origin_m.y() - faces[0].v_half_m, faces[0].origin_m.z());
-          const Vec3 hi(faces[0].origin_m.x() + faces[0].u_half_m, faces[0].origin_m.y() + faces[0].v_half_m, faces[1].origin_m.z());
-          const bool inside = (p - lo).minCoeff() > 0.0 && (hi - p).minCoeff() > 0.0;
-          if (inside || !geometry::IsSegmentClear(faces, previous, p)) {
-            m.Fail("boxes", fmt::format("trajectory '{}' passes through box '{}' at t = {} s{}", t.name,
-                                        faces[0].name.substr(0, faces[0].name.size() - 7), FormatValue(samples[k].t_s),
+        for (const Box& box : boxes) {
+          const bool inside = (p - box.lo_m).minCoeff() > 0.0 && (box.hi_m - p).minCoeff() > 0.0;
+          if (inside || !geometry::IsSegmentClear(box.faces, previous, p)) {
+            m.Fail("boxes", fmt::format("trajectory '{}' passes through box '{}' at t = {} s{}", t.name, box.name,
+                                        FormatValue(samples[k].t_s),
                                         offset.norm() > 0.0 ? fmt::format(" (shifted by the run grid's corner [{}, {}] m)",
                                                                           FormatValue(offset.x() + 0.0), FormatValue(offset.y() + 0.0))
                                                             : std::string()));
