@@ -60,8 +60,10 @@ const core::OptionsDescriptor<AcousticOptions>& AcousticOptionsDescriptor() {
               {.key = "echo_order",
                .range = ValueRange::Closed(0.0, 2.0),
                .doc = "Highest order of the floor plan's reflections (walls, floor, ceiling) whose paths the filters "
-                      "predict per microphone: a stamp may be the direct path or an echo, a virtual receiver. 0: direct "
-                      "paths only (the thesis). Ignored without a floor plan with a ceiling. 1."});
+                      "predict per microphone: a stamp may be the direct path or an echo, a virtual receiver. 2: the "
+                      "double echoes (floor-ceiling, wall-floor) arrive among the first-order ones and would be paired "
+                      "with them; 1: first-order echoes only; 0: direct paths only (the thesis). Ignored without a "
+                      "floor plan with a ceiling. 2."});
     d.Number(&O::detection_probability,
              {.key = "detection_probability",
               .range = ValueRange::LeftOpen(0.0, 1.0),

@@ -47,11 +47,15 @@ struct AcousticOptions {
   /// Noise margin of the TDOA bound in stamp sigmas, >= 0. 3.
   double tdoa_bound_sigmas = 3.0;
   /// Highest order of the reflections (walls, floor, ceiling of the world's floor plan) whose
-  /// paths the filters predict per microphone, in [0, 2]. 1: every stamp may be the direct path or
-  /// a first-order echo, a virtual receiver mirrored in one surface, so that an emission whose
-  /// direct paths the body blocks still informs the filter. 0: direct paths only (the thesis).
+  /// paths the filters predict per microphone, in [0, 2]. Every stamp may be the direct path or an
+  /// echo, a virtual receiver mirrored in the surfaces, so that an emission whose direct paths the
+  /// body blocks still informs the filter. 2: a room with a floor and a ceiling returns the
+  /// double echoes (floor-ceiling, wall-floor, wall-wall) among the first-order ones, and a filter
+  /// that does not predict them pairs them with first-order paths and confirms the wrong pairing
+  /// (docs/results/acoustic.md: order 1 loses 3 of 20 hold-out runs and biases a 3-D height by
+  /// 0.23 m). 1: first-order echoes only (a third of the cost). 0: direct paths only (the thesis).
   /// Ignored without a floor plan with a ceiling.
-  int echo_order = 1;
+  int echo_order = 2;
   /// Probability that a predicted path's stamp is detected, in (0, 1]. With clutter_density_per_m
   /// it sets the association's likelihood-ratio gate (see the estimator). 0.9; derived: the
   /// scenario's detection probability.
