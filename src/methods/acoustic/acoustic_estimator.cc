@@ -92,7 +92,8 @@ AgentEstimate AcousticEstimator::Estimate() const {
   return out;
 }
 
-void AcousticEstimator::Start(const Vec3& position_m, double position_sigma_m) {
+void AcousticEstimator::Start(const Vec3& position_m, double position_sigma_m,
+                              const std::optional<Eigen::Matrix4d>& fix_covariance) {
   const int d = dim();
   const int n = 2 * d + 2 + (options_.inertial ? 2 : 0);
   x_ = Eigen::VectorXd::Zero(n);
@@ -103,6 +104,13 @@ void AcousticEstimator::Start(const Vec3& position_m, double position_sigma_m) {
   // b is set by the first emission: its variance covers the position's effect on the ranges
   // plus the stamps' noise.
   P_(2 * d, 2 * d) = position_sigma_m * position_sigma_m + options_.range_sigma_m * options_.range_sigma_m;
+  if (fix_covariance) {
+    // A fix of the first emission (multipath_fix.h): its position, b and their correlation.
+    P_.topLeftCorner(d, d) = fix_covariance->topLeftCorner(d, d);
+    P_.block(0, 2 * d, d, 1) = fix_covariance->block(0, 3, d, 1);
+    P_.block(2 * d, 0, 1, d) = fix_covariance->block(3, 0, 1, d);
+    P_(2 * d, 2 * d) = (*fix_covariance)(3, 3);
+  }
   const double iota_sigma_m = c_mps_ * options_.emission_interval_s * options_.clock_drift_ppm * 1e-6;
   P_(2 * d + 1, 2 * d + 1) = std::max(iota_sigma_m * iota_sigma_m, 1e-12);
   if (options_.inertial) {
@@ -121,7 +129,86 @@ void AcousticEstimator::Initialize(const Prior& prior) {
   last_ = Estimate();
 }
 
-bool AcousticEstimator::InitializeFromEpoch(const core::Epoch& /*epoch*/) { return false; }
+bool AcousticEstimator::InitializeFromEpoch(const core::Epoch& epoch) {
+  // The snapshot estimators need no start: the first epoch with a fix is their start.
+  if (!filter()) return Process(epoch).fixed;
+  // The filters: a fix from all the stamps anywhere in the floor plan.
+  if (world_.floor_plan.walls().empty()) return false;  // no region to search
+  const auto [lo, hi] = world_.floor_plan.Bounds();
+  MultipathSearchRegion region;
+  region.lo_m = Vec3(lo.x(), lo.y(), 0.0);
+  region.hi_m = Vec3(hi.x(), hi.y(), 0.0);
+  SetHeightRange(region);
+  return StartFromStamps(epoch, region) == StartOutcome::kStarted;
+}
+
+void AcousticEstimator::SetHeightRange(MultipathSearchRegion& region) const {
+  region.plan = &world_.floor_plan;
+  if (planar()) {
+    region.lo_m.z() = region.hi_m.z() = height_m_;
+    return;
+  }
+  // Between the floor and the highest a sender is carried, below the ceiling.
+  const double floor_z_m = world_.floor_plan.floor_z_m();
+  const double top_m = std::min(world_.floor_plan.ceiling_z_m(), floor_z_m + options_.ground_echo.max_sender_height_m);
+  region.lo_m.z() = std::clamp(region.lo_m.z(), floor_z_m, top_m);
+  region.hi_m.z() = std::clamp(region.hi_m.z(), floor_z_m, top_m);
+  if (!(region.hi_m.z() > region.lo_m.z())) {
+    region.lo_m.z() = floor_z_m;
+    region.hi_m.z() = top_m;
+  }
+}
+
+AcousticEstimator::StartOutcome AcousticEstimator::StartFromStamps(const core::Epoch& epoch,
+                                                                   const MultipathSearchRegion& region) {
+  MultipathFixOptions o;
+  o.range_sigma_m = options_.range_sigma_m;
+  o.echo_order = reflectors_.empty() ? 0 : options_.echo_order;
+  o.detection_probability = options_.detection_probability;
+  o.clutter_density_per_m = options_.clutter_density_per_m;
+  o.irls = options_.irls;
+  o.irls.robust = true;  // the search's refinement is robust whatever the filter's update
+  const MultipathFix fix = FixFromAllStamps(reflectors_, mics_m_, Stamps(epoch, epoch.t_s), region, o);
+  if (!fix.found) {
+    pending_start_.reset();
+    return StartOutcome::kNoFix;
+  }
+  // One emission's best explanation can be a wrong position whose chance coincidences outweigh
+  // the sender's (dense echoes near a corner); two emissions agree only at the sender. The start
+  // waits for the next emission's fix, which must follow the first: their emission times an
+  // integer number of intervals apart (the clock drift and the offsets' sigmas as tolerance), and
+  // the positions no farther apart than the velocity prior's 3 sigma over that time plus 3 sigma
+  // of the fixes.
+  const PendingStart current{epoch.t_s + fix.offset_m / c_mps_, fix};
+  if (!pending_start_ || !Follows(*pending_start_, current)) {
+    pending_start_ = current;
+    return StartOutcome::kPending;
+  }
+  const PendingStart first = *pending_start_;
+  pending_start_.reset();
+  Start(fix.position_m, options_.initial_position_sigma_m, fix.covariance);
+  // The velocity's mean from the two fixes (its sigma stays the prior's).
+  x_.segment(dim(), dim()) = (fix.position_m - first.fix.position_m).head(dim()) / (current.emission_s - first.emission_s);
+  t_ref_s_ = current.emission_s;  // b = 0 at this emission
+  have_emission_ = true;
+  (void)Increment(epoch);  // starts the dead reckoning's interval
+  return StartOutcome::kStarted;
+}
+
+bool AcousticEstimator::Follows(const PendingStart& first, const PendingStart& second) const {
+  const double elapsed_s = second.emission_s - first.emission_s;
+  const double intervals = std::round(elapsed_s / options_.emission_interval_s);
+  if (intervals < 1.0) return false;
+  const double offset_var_m2 = first.fix.covariance(3, 3) + second.fix.covariance(3, 3) +
+                               2.0 * std::pow(c_mps_ * options_.emission_jitter_s, 2);
+  const double timing_tolerance_s =
+      3.0 * std::sqrt(offset_var_m2) / c_mps_ + intervals * options_.emission_interval_s * options_.clock_drift_ppm * 1e-6;
+  if (std::abs(elapsed_s - intervals * options_.emission_interval_s) > timing_tolerance_s) return false;
+  const int d = dim();
+  const double position_var_m2 = first.fix.covariance.topLeftCorner(d, d).trace() + second.fix.covariance.topLeftCorner(d, d).trace();
+  const double reach_m = 3.0 * options_.initial_velocity_sigma_mps * elapsed_s + 3.0 * std::sqrt(position_var_m2);
+  return (second.fix.position_m - first.fix.position_m).head(d).norm() <= reach_m;
+}
 
 StampsByReceiver AcousticEstimator::Stamps(const core::Epoch& epoch, double t_ref_s) const {
   StampsByReceiver out(world_.anchors.size());
@@ -307,6 +394,27 @@ StepOutput AcousticEstimator::Filter(const core::Epoch& epoch) {
   const int d = dim();
   const int n = static_cast<int>(x_.size());
   if (!have_emission_) {
+    // The first emission: with b unknown and a prior wider than the echoes' spacing, pairing
+    // stamps with paths at the prior mean is a guess. With the echoes predicted, the fix from all
+    // stamps inside the prior's 3 sigma box (multipath_fix.h) starts the filter. Without them
+    // every echo is a direct path of some other position, and such a search finds those as
+    // readily: the thesis's start stands (the prior mean, the emission the earliest stamps imply).
+    MultipathSearchRegion region;
+    const Eigen::VectorXd sigma_m = P_.diagonal().head(d).cwiseSqrt();
+    region.lo_m.head(d) = x_.head(d) - 3.0 * sigma_m;
+    region.hi_m.head(d) = x_.head(d) + 3.0 * sigma_m;
+    if (!world_.floor_plan.walls().empty()) {
+      const auto [lo, hi] = world_.floor_plan.Bounds();
+      region.lo_m.head<2>() = region.lo_m.head<2>().cwiseMax(lo);
+      region.hi_m.head<2>() = region.hi_m.head<2>().cwiseMin(hi);
+    }
+    SetHeightRange(region);
+    if (!reflectors_.empty() && StartFromStamps(epoch, region) != StartOutcome::kNoFix) {
+      // Started from the fixes, or waiting for the next emission's to confirm: the prior stands.
+      out.expected = static_cast<int>(world_.anchors.size());
+      out.agents.push_back(Estimate());
+      return out;
+    }
     const auto emission_s = ImpliedEmission(epoch, Position());
     if (!emission_s) {
       out.agents.push_back(Estimate());

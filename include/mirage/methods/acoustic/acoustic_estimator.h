@@ -55,6 +55,7 @@
 #include "mirage/estimation/imu/pdr.h"
 #include "mirage/estimation/robust/irls_update.h"
 #include "mirage/methods/acoustic/acoustic_options.h"
+#include "mirage/methods/acoustic/multipath_fix.h"
 #include "mirage/methods/acoustic/path_association.h"
 #include "mirage/methods/estimator.h"
 #include "mirage/methods/world.h"
@@ -103,7 +104,28 @@ class AcousticEstimator final : public Estimator {
   /// The emission time (s) the epoch's earliest stamps imply at position p: their median of
   /// T_first - |p - M_i| / c; empty without stamps.
   [[nodiscard]] std::optional<double> ImpliedEmission(const core::Epoch& epoch, const Vec3& position_m) const;
-  void Start(const Vec3& position_m, double position_sigma_m);
+  /// Starts the state at position_m with sigma position_sigma_m per axis, or, with fix_covariance
+  /// (of [x, y, z, b], multipath_fix.h), with that covariance of the position and b.
+  void Start(const Vec3& position_m, double position_sigma_m,
+             const std::optional<Eigen::Matrix4d>& fix_covariance = std::nullopt);
+  /// A fix of one emission waiting for the next one's to confirm it.
+  struct PendingStart {
+    double emission_s = 0.0;  ///< its emission time in the stamps' time base (s)
+    MultipathFix fix;
+  };
+  enum class StartOutcome { kStarted, kPending, kNoFix };
+  /// The filters' start from the fixes over all stamps inside the region of two successive
+  /// emissions that follow each other (Follows); kPending after the first, kNoFix without a fix.
+  /// The emissions' stamps are then used.
+  StartOutcome StartFromStamps(const core::Epoch& epoch, const MultipathSearchRegion& region);
+  /// second's emission an integer number of intervals after first's (within the clock drift and
+  /// the offsets' 3 sigma), its position within the velocity prior's 3 sigma reach plus the fixes'.
+  [[nodiscard]] bool Follows(const PendingStart& first, const PendingStart& second) const;
+  /// The region's heights: the known height (planar), else clipped to between the floor and the
+  /// highest a sender is carried (ground_echo.max_sender_height_m) below the ceiling, the whole
+  /// range when nothing is left; and the floor plan whose inside is searched.
+  void SetHeightRange(MultipathSearchRegion& region) const;
+  [[nodiscard]] bool filter() const { return options_.estimator == "rekf" || options_.estimator == "ekf"; }
   void Predict(int intervals);
   /// One stamp paired with a predicted path of its microphone.
   struct Row {
@@ -148,6 +170,7 @@ class AcousticEstimator final : public Estimator {
   bool started_ = false;         // a position is known
   bool have_emission_ = false;   // b refers to an emission (set at the first epoch with stamps)
   std::optional<Vec3> start_m_;  // a given start, waiting for its first emission
+  std::optional<PendingStart> pending_start_;
   std::optional<GroundEchoFixer> ground_echo_;  // estimator "ground_echo"
   core::Rng rng_;                // the NLLS's random starts (fixed seed: results are reproducible)
   AgentEstimate last_;
