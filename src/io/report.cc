@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include <fmt/format.h>
 
@@ -134,6 +135,15 @@ json RunHealthJson(const pipeline::Variant& variant, const pipeline::ExperimentR
             {"drifted", h.drifted},
             {"drift_reason", h.drift_reason}};
   if (grid) j["variant"] = variant.name;
+  json alignment = json::array();
+  for (const auto& agent : run.agents) {
+    if (!agent.alignment) continue;
+    const Vec3 t = agent.alignment->TranslationM();
+    alignment.push_back({{"agent", agent.name},
+                         {"rotation_deg", agent.alignment->AngleRad() * 180.0 / std::numbers::pi},
+                         {"translation_m", {t.x(), t.y(), t.z()}}});
+  }
+  if (!alignment.empty()) j["alignment"] = alignment;
   return j;
 }
 
@@ -206,6 +216,7 @@ json MakeJsonReport(const Scenario& scenario, const pipeline::ExperimentResult& 
     j["recorded_data"] = {{f.toa_stamps() ? "mics" : "anchors", f.toa_stamps() ? f.mics : f.anchors},
                           {MeasurementFileKey(f), MeasurementFile(f)},
                           {"truth", f.truth ? json(*f.truth) : json(nullptr)},
+                          {"alignment", base.align_rigid ? "rigid (Bordoy 2020 Eq. 3.49-3.52; per run in health.runs)" : "none"},
                           {"epochs", base.recording->steps.size()}};
   }
   return j;
@@ -243,7 +254,9 @@ std::string FormatResultTable(const Scenario& scenario, const pipeline::Experime
   if (scenario.recording_files) {
     const auto& f = *scenario.recording_files;
     out += fmt::format("recorded data: {} ({} epochs){}\n", MeasurementFile(f), base.recording->steps.size(),
-                       scenario.recording_files->truth ? "" : "; no truth file, so no position error");
+                       !scenario.recording_files->truth ? "; no truth file, so no position error"
+                       : base.align_rigid                ? "; estimates rigidly aligned to the truth's frame"
+                                                         : "");
   }
   const auto& front = summaries.front();
   if (front.overall.map && !grid) {

@@ -563,6 +563,13 @@ Experiment ReadExperiment(YamlMap& root, const std::string& file, const methods:
     YamlMap evaluation = root.OptionalMap("evaluation");
     ReadOptions(evaluation.OptionalMap("divergence"), eval::DivergenceRuleDescriptor(), keys, e.divergence);
     e.map_cutoff_m = evaluation.NumberInRange("map_cutoff_m", e.map_cutoff_m, 1e-9, kHuge, "m");
+    const std::string align = evaluation.String("align", std::string("none"));
+    if (align != "none" && align != "rigid") evaluation.Fail("align", "'" + align + "' is not one of: none, rigid");
+    e.align_rigid = align == "rigid";
+    if (e.align_rigid && !(e.recording && e.recording->has_truth())) {
+      evaluation.Fail("align", "rigid aligns a recording's estimates to its truth's frame (truth.csv from another "
+                               "reference system); a simulation's truth, or a recording without truth, has none to align to");
+    }
     evaluation.RejectUnknownKeys();
   }
 

@@ -77,6 +77,32 @@ double EstimateError(const methods::AgentEstimate& estimate, const Vec3& truth_m
   return (estimate.position_m - truth_m).norm();
 }
 
+// The track's estimates rigidly aligned to its truth (Experiment::align_rigid): the transform from
+// the epochs with a fix and truth, applied to every estimate and covariance, the errors anew.
+void AlignToTruth(AgentTrack& agent) {
+  std::vector<Vec3> truth_m, estimate_m;
+  bool planar = true;
+  for (const auto& s : agent.steps) {
+    if (!s.truth_m || !s.fixed) continue;
+    truth_m.push_back(*s.truth_m);
+    estimate_m.push_back(s.estimate_m);
+    planar = planar && s.covariance_m2(2, 2) == 0.0;
+  }
+  agent.alignment = eval::AlignRigid(truth_m, estimate_m, planar);
+  if (!agent.alignment) return;
+  const Eigen::Matrix3d& R = agent.alignment->rotation;
+  for (auto& s : agent.steps) {
+    s.estimate_m = agent.alignment->Apply(s.estimate_m);
+    s.covariance_m2 = R * s.covariance_m2 * R.transpose();
+    if (!s.truth_m) continue;
+    methods::AgentEstimate aligned;
+    aligned.position_m = s.estimate_m;
+    aligned.covariance_m2 = s.covariance_m2;
+    s.error_m = EstimateError(aligned, *s.truth_m);
+    if (s.height_error_m) s.height_error_m = std::abs(s.estimate_m.z() - s.truth_m->z());
+  }
+}
+
 // The channel's snapshot PEB at the true position from the simulated paths' SINRs.
 std::optional<double> SnapshotBound(const VariantContext& vc, const SourceStep& step) {
   if (step.paths.empty() || !step.truth_m.front()) return std::nullopt;
@@ -147,14 +173,15 @@ RunRecord RunOne(const VariantContext& vc, int variant, int group, int run, cons
   const GivenPlan given = MakeGivenPlan(e, RunRng(e.seed, vc.joint ? 0 : group, run).Substream("plan"));
   const methods::World world = MakeWorld(vc, given, group);
   const auto estimator = e.method.create(world);
-  for (const auto& name : world.agents) record.agents.push_back({name, {}, false});
+  for (const auto& name : world.agents) record.agents.push_back({name, {}, false, std::nullopt});
 
   // The start: the truth (possibly perturbed by the method's own start uncertainty), a given
-  // point, or the estimator's own fix from the first epochs.
+  // point, or the estimator's own fix from the first epochs (also when the recording's truth is
+  // in another frame, align_rigid).
   bool started = false;
   if (e.self_start) {
     // Every start comes from the data.
-  } else if (const auto truth = source->TrueStart(); truth && !(e.recording && e.start_m)) {
+  } else if (const auto truth = source->TrueStart(); truth && !(e.recording && (e.start_m || e.align_rigid))) {
     std::vector<Vec3> start = *truth;
     const double sigma = e.method.start_sigma_m;
     if (anchor_source != nullptr) {
@@ -286,6 +313,9 @@ RunRecord RunOne(const VariantContext& vc, int variant, int group, int run, cons
     }
   }
   record.health.out_of_order_records = source->out_of_order();
+  if (e.align_rigid) {
+    for (auto& agent : record.agents) AlignToTruth(agent);
+  }
 
   for (auto& agent : record.agents) {
     std::vector<double> errors;

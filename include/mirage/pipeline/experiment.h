@@ -193,6 +193,10 @@ struct Experiment {
   // Evaluation.
   eval::DivergenceRule divergence;
   double map_cutoff_m = 0.5;  ///< OSPA cut-off of the map error (m)
+  /// Recorded data with truth in another frame (a motion-capture system): each run's estimates are
+  /// rigidly aligned to its truth before the errors (eval/rigid_alignment.h, Bordoy 2020 Eq.
+  /// 3.49-3.52). Only for recordings with truth.
+  bool align_rigid = false;
 };
 
 /// The method of `info` bound to its options (an object of the struct info.descriptor describes,

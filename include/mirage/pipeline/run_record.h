@@ -11,6 +11,7 @@
 #include <Eigen/Core>
 
 #include "mirage/core/types.h"
+#include "mirage/eval/rigid_alignment.h"
 #include "mirage/methods/estimator.h"
 #include "mirage/pipeline/map_evaluation.h"
 
@@ -43,6 +44,8 @@ struct AgentTrack {
   std::string name;  ///< the trajectory's name
   std::vector<TrackStep> steps;
   bool diverged = false;  ///< eval::IsDiverged on its errors (false without truth)
+  /// The rigid alignment applied to the estimates (Experiment::align_rigid), if any.
+  std::optional<eval::RigidTransform> alignment;
 };
 
 /// Ground truth of one specular path at one epoch, with the estimator's SINR estimate of it.
