@@ -148,6 +148,31 @@ void ReadTrajectories(YamlMap& root, bool recorded, Experiment& e) {
       spec.height_period_s = t.Number("height_period_s", spec.height_period_s);
       if (!(spec.height_period_s > 0.0)) t.Fail("height_period_s", FormatValue(spec.height_period_s) + " s must be > 0 s");
     }
+    for (auto& stop_map : t.Has("stops") ? t.MapList("stops", true) : std::vector<YamlMap>()) {
+      geometry::Stop stop;
+      // The walker slows down over kStopRamp_s before a stop and speeds up over it after.
+      stop.at_s = stop_map.NumberInRange("at_s", 0.0, geometry::kStopRamp_s, kHuge, "s");
+      stop.duration_s = stop_map.Number("duration_s", 0.0);
+      if (!(stop.duration_s > 0.0) || !(stop.duration_s < kHuge)) {
+        stop_map.Fail("duration_s", FormatValue(stop.duration_s) + " s must be > 0 s");
+      }
+      if (!spec.stops.empty()) {
+        const double earliest_s = spec.stops.back().at_s + spec.stops.back().duration_s + 2.0 * geometry::kStopRamp_s;
+        if (stop.at_s < earliest_s) {
+          stop_map.Fail("at_s", fmt::format("{} s is before {} s, the previous stop's end plus the time to speed up and slow "
+                                            "down again ({} s each): stops are sorted and do not overlap",
+                                            FormatValue(stop.at_s), FormatValue(earliest_s), FormatValue(geometry::kStopRamp_s)));
+        }
+      }
+      // The stop must begin while the agent still walks.
+      const double walk_s = geometry::PolylineLength(spec.waypoints_m) / spec.speed_mps;
+      if (geometry::WalkedTime(stop.at_s, spec.stops) >= walk_s) {
+        stop_map.Fail("at_s", fmt::format("{} s is after the walk ends ({} s with the earlier stops)", FormatValue(stop.at_s),
+                                          FormatValue(walk_s + (stop.at_s - geometry::WalkedTime(stop.at_s, spec.stops)))));
+      }
+      stop_map.RejectUnknownKeys();
+      spec.stops.push_back(stop);
+    }
     if (!IsPlainName(spec.name)) t.Fail("name", "must not contain commas, quotes or line breaks (it goes into CSV files)");
     for (const auto& other : e.trajectories) {
       if (other.name == spec.name) t.Fail("name", "duplicate trajectory name '" + spec.name + "' (names label the CSV rows)");
@@ -158,7 +183,7 @@ void ReadTrajectories(YamlMap& root, bool recorded, Experiment& e) {
       t.Fail("speed_mps", fmt::format("speed_mps * dt_s gives more than {:g} steps for this trajectory", kMaxStepsPerTrajectory));
     }
     if (spec.turn_radius_m > 0.0 &&
-        geometry::SampleTrajectory(spec.waypoints_m, spec.speed_mps, spec.dt_s, Vec2::Zero(), spec.turn_radius_m).size() < 2) {
+        geometry::SampleTrajectory(spec.waypoints_m, spec.speed_mps, spec.dt_s, Vec2::Zero(), spec.turn_radius_m, spec.stops).size() < 2) {
       t.Fail("turn_radius_m", "with its corners rounded the trajectory is shorter than one step (speed_mps * dt_s)");
     }
     // Every run walks the trajectory shifted by its grid offset: check the grid's corners too.
@@ -334,7 +359,7 @@ void ReadUwbTdoa(YamlMap& m, Experiment& e, const core::PhysicalKeys& keys) {
     // leg between consecutive samples (of every run's shifted path) may cross a face or start
     // inside.
     for (const Vec2& offset : GridCorners(e.run_grid)) {
-      const auto samples = geometry::SampleTrajectory(t.waypoints_m, t.speed_mps, t.dt_s, offset, t.turn_radius_m);
+      const auto samples = geometry::SampleTrajectory(t.waypoints_m, t.speed_mps, t.dt_s, offset, t.turn_radius_m, t.stops);
       for (std::size_t k = 0; k < samples.size(); ++k) {
         const Vec3 p = pipeline::TrajectoryPositionAt(t, samples[k]);
         const Vec3 previous = k > 0 ? pipeline::TrajectoryPositionAt(t, samples[k - 1]) : p;

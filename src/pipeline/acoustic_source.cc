@@ -18,7 +18,7 @@ AcousticSource::AcousticSource(const Experiment& e, int trajectory, int run)
       imu_rng_(RunRng(e.seed, trajectory, run).Substream("imu")) {
   const Vec2 offset_m = RunOffset(e.run_grid, run);
   samples_ = geometry::SampleTrajectory(trajectory_.waypoints_m, trajectory_.speed_mps, trajectory_.dt_s, offset_m,
-                                        trajectory_.turn_radius_m);
+                                        trajectory_.turn_radius_m, trajectory_.stops);
   for (const auto& a : e.anchors) mics_m_.push_back(a.position_m);
   core::Rng offset = RunRng(e.seed, trajectory, run).Substream("emission offset");
   first_emission_s_ = offset.Uniform(0.0, trajectory_.dt_s);
@@ -50,12 +50,15 @@ std::optional<SourceStep> AcousticSource::Next() {
   SimulateImuOnce();
   const std::size_t k = next_++;
   const Experiment& e = experiment_;
-  // The walking direction: towards the next sample (the last keeps the previous one's).
+  // The walking direction: towards the next sample (the last keeps the previous one's); a walker
+  // who stands (a stop) still faces the way they walked.
   Vec2 heading = Vec2::Zero();
-  if (samples_.size() > 1) {
-    const std::size_t a = std::min(k, samples_.size() - 2);
-    const Vec2 d = samples_[a + 1].position_m - samples_[a].position_m;
-    if (d.norm() > 0.0) heading = d.normalized();
+  for (std::size_t a = std::min(k + 1, samples_.size() - 1); a > 0; --a) {
+    const Vec2 d = samples_[a].position_m - samples_[a - 1].position_m;
+    if (d.norm() > 0.0) {
+      heading = d.normalized();
+      break;
+    }
   }
   // Emission k leaves at the sender clock's k-th tick, which runs clock_drift_ppm fast.
   const double t_emit_s = first_emission_s_ + (samples_[k].t_s - samples_.front().t_s) * (1.0 + 1e-6 * e.acoustic.clock_drift_ppm);

@@ -56,7 +56,7 @@ AnchorChannelSource::AnchorChannelSource(const AnchorChannelContext& context, in
   }
   offset_m_ = RunOffset(e.run_grid, run);
   samples_ = geometry::SampleTrajectory(trajectory_.waypoints_m, trajectory_.speed_mps, trajectory_.dt_s, offset_m_,
-                                        trajectory_.turn_radius_m);
+                                        trajectory_.turn_radius_m, trajectory_.stops);
 }
 
 Vec3 AnchorChannelSource::TruthAt(std::size_t k) const {

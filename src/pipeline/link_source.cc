@@ -17,7 +17,7 @@ JointTruth SampleJointTruth(const Experiment& e) {
   std::size_t longest = 0;
   for (std::size_t a = 0; a < agents; ++a) {
     const TrajectorySpec& t = e.trajectories[a];
-    samples.push_back(geometry::SampleTrajectory(t.waypoints_m, t.speed_mps, t.dt_s, Vec2::Zero(), t.turn_radius_m));
+    samples.push_back(geometry::SampleTrajectory(t.waypoints_m, t.speed_mps, t.dt_s, Vec2::Zero(), t.turn_radius_m, t.stops));
     longest = std::max(longest, samples.back().size());
     truth.names.push_back(t.name);
   }

@@ -449,7 +449,7 @@ ExperimentResult RunExperiment(std::span<const Variant> variants, const Progress
           truth.t_s.push_back(source.start_s());
           truth.positions_m.push_back(*source.TrueStart());
           const TrajectorySpec& t = e.trajectories[static_cast<std::size_t>(j.group)];
-          for (const auto& s : geometry::SampleTrajectory(t.waypoints_m, t.speed_mps, t.dt_s, source.offset_m(), t.turn_radius_m)) {
+          for (const auto& s : geometry::SampleTrajectory(t.waypoints_m, t.speed_mps, t.dt_s, source.offset_m(), t.turn_radius_m, t.stops)) {
             truth.t_s.push_back(s.t_s);
             truth.positions_m.push_back({Vec3(s.position_m.x(), s.position_m.y(), t.height_m)});
           }

@@ -13,7 +13,7 @@ UwbTdoaSource::UwbTdoaSource(const Experiment& e, int trajectory, int run)
       trajectory_(e.trajectories[static_cast<std::size_t>(trajectory)]),
       rng_(RunRng(e.seed, trajectory, run).Substream("uwb tdoa")) {
   samples_ = geometry::SampleTrajectory(trajectory_.waypoints_m, trajectory_.speed_mps, trajectory_.dt_s,
-                                        RunOffset(e.run_grid, run), trajectory_.turn_radius_m);
+                                        RunOffset(e.run_grid, run), trajectory_.turn_radius_m, trajectory_.stops);
   for (const auto& a : e.anchors) {
     anchors_m_.push_back(a.position_m);
     anchor_ids_.push_back(a.id);

@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: MIT
 // End-to-end regression of examples/acoustic_height_office.yaml, the hold-out of the acoustic
 // height methods: an office whose rooms return echoes to order 2, the body and partitions
-// blocking direct paths, the phone swinging at 1.1-1.5 m. The 3-D REKF that predicts the echoes
-// to order 2 (the default) keeps the height within centimetres; predicting first-order echoes only,
-// it pairs the floor-ceiling double echoes with first-order paths and holds a height 0.2-0.3 m
-// off (the reason for the default). 4 runs per variant with the file's seed; the ch. 8 snapshot
-// variants are not run here (their failure is documented in docs/results/acoustic.md). The
-// order-2 REKF also runs started by itself (`self_start`, the fix over all stamps of
+// blocking direct paths, the phone swinging at 1.1-1.5 m, two stops. The 3-D REKF that predicts
+// the echoes to order 2 (the default) keeps the height within centimetres; predicting first-order
+// echoes only, it pairs the floor-ceiling double echoes with first-order paths and holds a height
+// 0.2-0.3 m off (the reason for the default). 4 runs per variant with the file's seed; the ch. 8
+// snapshot variants are not run here (their failure is documented in docs/results/acoustic.md).
+// The order-2 REKF also runs started by itself (`self_start`, the fix over all stamps of
 // multipath_fix.h searched over the whole office's volume).
 #include <string>
 #include <vector>
@@ -40,7 +40,7 @@ TEST(AcousticHeightOffice, SecondOrderEchoesPredictedKeepTheHeightFirstOrderOnly
   const auto& order2 = testing::FindVariant(summaries, "method.estimator=rekf").overall;
   ASSERT_TRUE(order2.height_error.has_value());
   EXPECT_LT(order2.height_error->p50, 0.03);   // measured 0.013 m over 20 runs
-  EXPECT_LT(order2.height_error->rmse, 0.05);  // 0.020 m
+  EXPECT_LT(order2.height_error->rmse, 0.05);  // 0.025 m
   EXPECT_EQ(order2.diverged_runs, 0);
 
   // Started without the truth: the fix over all stamps in the whole office's volume.

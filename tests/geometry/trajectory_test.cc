@@ -175,5 +175,54 @@ TEST(SampleTrajectory, TurnsInPlaceAtAReversalEvenWithATurnRadius) {
   EXPECT_TRUE(samples[40].position_m.isApprox(Vec2(2, 0), 1e-9));
 }
 
+TEST(SampleTrajectory, AStopHoldsThePositionWithZeroVelocityAndTheWalkResumesWhereItStopped) {
+  // 10 m at 1 m/s, 0.5 s steps; a 2 s stop from 3 s: slowing over [2.5, 3] s (0.25 m lost), standing
+  // at 2.75 m until 5 s, back to speed over [5, 5.5] s. The walk ends 2.5 s later: 5 more samples.
+  const std::vector<Vec2> wps = {Vec2(0.0, 0.0), Vec2(10.0, 0.0)};
+  const std::vector<Stop> stops = {{3.0, 2.0}};
+  const auto plain = SampleTrajectory(wps, 1.0, 0.5);
+  for (const double radius_m : {0.0, 0.5}) {
+    SCOPED_TRACE(radius_m);
+    const auto samples = SampleTrajectory(wps, 1.0, 0.5, Vec2::Zero(), radius_m, stops);
+    ASSERT_EQ(samples.size(), plain.size() + 5);
+    for (const auto& s : samples) {
+      const bool standing = s.t_s >= 3.0 && s.t_s < 5.0;
+      if (standing) {
+        EXPECT_NEAR(s.position_m.x(), 2.75, 1e-9) << "t " << s.t_s;
+        EXPECT_NEAR(s.velocity_mps.norm(), 0.0, 1e-12) << "t " << s.t_s;
+      }
+      if (s.t_s <= 2.5) {
+        EXPECT_NEAR(s.position_m.x(), s.t_s, 1e-9);
+      }
+      if (s.t_s >= 5.5) {
+        EXPECT_NEAR(s.position_m.x(), s.t_s - 2.5, 1e-9);
+      }
+      if (s.t_s <= 2.5 || s.t_s >= 5.5) {
+        EXPECT_NEAR(s.velocity_mps.norm(), 1.0, 1e-12) << "t " << s.t_s;
+      }
+    }
+    EXPECT_NEAR(samples.back().position_m.x(), 10.0, 1e-9);
+  }
+  // Without stops the samples are those of before (bit for bit: the examples' hashes rely on it).
+  const auto none = SampleTrajectory(wps, 1.0, 0.5, Vec2::Zero(), 0.0, {});
+  ASSERT_EQ(none.size(), plain.size());
+  for (std::size_t i = 0; i < none.size(); ++i) EXPECT_EQ(none[i].position_m, plain[i].position_m);
+}
+
+TEST(WalkedTime, LosesHalfARampSlowingDownTheStopAndHalfARampSpeedingUp) {
+  // A 2 s stop from 3 s, ramps of kStopRamp_s = 0.5 s.
+  ASSERT_DOUBLE_EQ(kStopRamp_s, 0.5);
+  const std::vector<Stop> stops = {{3.0, 2.0}, {8.0, 1.0}};
+  EXPECT_DOUBLE_EQ(WalkedTime(2.5, stops), 2.5);
+  EXPECT_DOUBLE_EQ(WalkedTime(2.75, stops), 2.75 - 0.0625);  // 0.25^2 / (2 * 0.5) lost
+  EXPECT_DOUBLE_EQ(WalkedTime(3.0, stops), 2.75);
+  EXPECT_DOUBLE_EQ(WalkedTime(4.0, stops), 2.75);            // standing
+  EXPECT_DOUBLE_EQ(WalkedTime(5.25, stops), 2.8125);
+  EXPECT_DOUBLE_EQ(WalkedTime(5.5, stops), 3.0);             // 2.5 s lost in all
+  EXPECT_DOUBLE_EQ(WalkedTime(7.5, stops), 5.0);
+  EXPECT_DOUBLE_EQ(WalkedTime(8.5, stops), 5.25);            // inside the second stop
+  EXPECT_DOUBLE_EQ(WalkedTime(10.0, stops), 6.0);            // 4 s lost in all
+}
+
 }  // namespace
 }  // namespace mirage::geometry

@@ -30,7 +30,7 @@ Variant Coop(const std::string& name, methods::coop::CoopOptions options, double
   e.plan_error.wall_shift_m = 0.001;
   e.plan_error.biased_wall = 1;
   e.plan_error.bias_m = bias_m;
-  e.trajectories = {{"a", {Vec2(1.0, 1.0), Vec2(1.0, 3.0)}, 0.025, 1.0, 0.0}, {"b", {Vec2(3.4, 1.2), Vec2(3.4, 3.2)}, 0.02, 1.0, 0.0}};
+  e.trajectories = {{"a", {Vec2(1.0, 1.0), Vec2(1.0, 3.0)}, 0.025, 1.0, 0.0, 0.0, 0.0, 4.0, {}}, {"b", {Vec2(3.4, 1.2), Vec2(3.4, 3.2)}, 0.02, 1.0, 0.0, 0.0, 0.0, 4.0, {}}};
   e.anchors = {{"A", Vec3(0.5, 6.0, 0.0)}};
   e.channel.window_length_s = 80e-9;
   e.channel.diffuse.power_ratio_db = -10.0;

@@ -49,6 +49,9 @@ struct TrajectorySpec {
   /// >= 0; period (s), > 0.
   double height_amplitude_m = 0.0;
   double height_period_s = 4.0;
+  /// Pauses of the walk (sorted, not overlapping): the agent stands still during each (Bordoy 2020
+  /// Sec. 6.2: walking trajectories with stops); the hand motion goes on.
+  std::vector<geometry::Stop> stops;
 };
 
 /// The agent's 3-D position at a sample of its trajectory: the sample's x, y at the trajectory's
