@@ -164,6 +164,13 @@ double WalkedTime(double t_s, std::span<const Stop> stops) {
   return t_s - lost_s;
 }
 
+double PathLength(std::span<const Vec2> waypoints_m, double turn_radius_m) {
+  if (!(turn_radius_m > 0.0) || waypoints_m.size() < 2) return PolylineLength(waypoints_m);
+  double length_m = 0.0;
+  for (const auto& piece : RoundCorners(waypoints_m, turn_radius_m)) length_m += piece.length_m;
+  return length_m;
+}
+
 std::vector<TrajectorySample> SampleTrajectory(std::span<const Vec2> waypoints_m, double speed_mps, double dt_s,
                                                const Vec2& offset_m, double turn_radius_m, std::span<const Stop> stops) {
   assert(waypoints_m.size() >= 2 && speed_mps > 0.0 && dt_s > 0.0 && turn_radius_m >= 0.0);

@@ -64,12 +64,8 @@ void WriteRecordedScenario(const Scenario& scenario, int trajectory, const std::
   emitter << out;
   const std::string path = dir + "/scenario.yaml";
   OutputFile output(path);
-  const bool starts_itself = scenario.method->input != methods::MethodInput::kToaStamps;
   output.stream() << "# Written by `mirage simulate " << scenario.file << "`: runs the recording in this directory.\n"
-                  << (starts_itself ? "# Without the `truth:` line the estimator starts itself from the first epochs (no "
-                                      "error figures).\n"
-                                    : "# Without the `truth:` line give `start_m: [x, y]` under measurements: the "
-                                      "acoustic method cannot start itself (no error figures then).\n")
+                  << "# Without the `truth:` line the estimator starts itself from the first epochs (no error figures).\n"
                   << emitter.c_str() << "\n";
   output.Commit();
 }

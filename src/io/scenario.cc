@@ -152,10 +152,8 @@ void ReadTrajectories(YamlMap& root, bool recorded, Experiment& e) {
       geometry::Stop stop;
       // The walker slows down over kStopRamp_s before a stop and speeds up over it after.
       stop.at_s = stop_map.NumberInRange("at_s", 0.0, geometry::kStopRamp_s, kHuge, "s");
-      stop.duration_s = stop_map.Number("duration_s", 0.0);
-      if (!(stop.duration_s > 0.0) || !(stop.duration_s < kHuge)) {
-        stop_map.Fail("duration_s", FormatValue(stop.duration_s) + " s must be > 0 s");
-      }
+      stop.duration_s = stop_map.Number("duration_s");
+      if (!(stop.duration_s > 0.0)) stop_map.Fail("duration_s", FormatValue(stop.duration_s) + " s must be > 0 s");
       if (!spec.stops.empty()) {
         const double earliest_s = spec.stops.back().at_s + spec.stops.back().duration_s + 2.0 * geometry::kStopRamp_s;
         if (stop.at_s < earliest_s) {
@@ -164,8 +162,8 @@ void ReadTrajectories(YamlMap& root, bool recorded, Experiment& e) {
                                             FormatValue(stop.at_s), FormatValue(earliest_s), FormatValue(geometry::kStopRamp_s)));
         }
       }
-      // The stop must begin while the agent still walks.
-      const double walk_s = geometry::PolylineLength(spec.waypoints_m) / spec.speed_mps;
+      // The stop must begin while the agent still walks (the path with its rounded corners).
+      const double walk_s = geometry::PathLength(spec.waypoints_m, spec.turn_radius_m) / spec.speed_mps;
       if (geometry::WalkedTime(stop.at_s, spec.stops) >= walk_s) {
         stop_map.Fail("at_s", fmt::format("{} s is after the walk ends ({} s with the earlier stops)", FormatValue(stop.at_s),
                                           FormatValue(walk_s + (stop.at_s - geometry::WalkedTime(stop.at_s, spec.stops)))));
@@ -181,6 +179,11 @@ void ReadTrajectories(YamlMap& root, bool recorded, Experiment& e) {
     if (length_m < spec.speed_mps * spec.dt_s) t.Fail("waypoints_m", "the trajectory is shorter than one step (speed_mps * dt_s)");
     if (length_m / (spec.speed_mps * spec.dt_s) > kMaxStepsPerTrajectory) {
       t.Fail("speed_mps", fmt::format("speed_mps * dt_s gives more than {:g} steps for this trajectory", kMaxStepsPerTrajectory));
+    }
+    double stopped_s = 0.0;  // with its ramps
+    for (const auto& stop : spec.stops) stopped_s += stop.duration_s + geometry::kStopRamp_s;
+    if ((length_m / spec.speed_mps + stopped_s) / spec.dt_s > kMaxStepsPerTrajectory) {
+      t.Fail("stops", fmt::format("the stops make the trajectory longer than {:g} steps of dt_s", kMaxStepsPerTrajectory));
     }
     if (spec.turn_radius_m > 0.0 &&
         geometry::SampleTrajectory(spec.waypoints_m, spec.speed_mps, spec.dt_s, Vec2::Zero(), spec.turn_radius_m, spec.stops).size() < 2) {
@@ -594,6 +597,10 @@ Experiment ReadExperiment(YamlMap& root, const std::string& file, const methods:
     if (e.align_rigid && !(e.recording && e.recording->has_truth())) {
       evaluation.Fail("align", "rigid aligns a recording's estimates to its truth's frame (truth.csv from another "
                                "reference system); a simulation's truth, or a recording without truth, has none to align to");
+    }
+    if (e.align_rigid && !e.start_m && !method->self_initializes) {
+      evaluation.Fail("align", "rigid: the truth's frame is not the anchors', so the run cannot start at the truth, and method '" +
+                                   method->name + "' cannot start itself: give measurements.start_m");
     }
     evaluation.RejectUnknownKeys();
   }

@@ -74,6 +74,7 @@ std::vector<MethodInfo> BuiltIn() {
         "Bordoy 2020 ch. 5", acoustic::AcousticOptionsDescriptor());
     m.input = MethodInput::kToaStamps;
     m.start_sigma_m = [](const void* o) { return static_cast<const acoustic::AcousticOptions*>(o)->initial_position_sigma_m; };
+    m.self_initializes = true;  // the filters: the fix over all stamps (multipath_fix.h); the snapshots need no start
     m.check = [](const void* o, const World& world) -> std::vector<std::string> {
       const auto& options = *static_cast<const acoustic::AcousticOptions*>(o);
       // Without the records' emission times the fixer would find no t_0 at any emission.

@@ -127,6 +127,39 @@ PY
   fi
 fi
 # The inertial input has no recorded form: refused, not dropped.
+# The acoustic filter on the recording without truth starts itself (the fix over all stamps in the
+# floor plan, confirmed by the next emission) and tracks: its positions stay within the plan.
+if [[ -f $acoustic/scenario.yaml ]]; then
+  mkdir -p "$work/acoustic_no_truth"
+  cp "$acoustic"/mics.csv "$acoustic"/toa.csv "$work/acoustic_no_truth/"
+  sed -e '/^  truth: truth.csv/d' "$acoustic/scenario.yaml" >"$work/acoustic_no_truth/scenario.yaml"
+  if ! "$mirage" run "$work/acoustic_no_truth/scenario.yaml" --quiet --json "$work/acoustic_no_truth/report.json" \
+    --csv "$work/acoustic_no_truth/csv"; then
+    fail "acoustic without truth: run failed"
+  elif ! python3 - "$work/acoustic_no_truth/report.json" "$work/acoustic_no_truth/csv" "$acoustic/truth.csv" <<'PY'
+import csv, json, math, sys
+j = json.load(open(sys.argv[1]))
+assert j["position_error_m"] is None and j["recorded_data"]["truth"] is None
+run = j["health"]["runs"][0]
+assert run["started"] and run["epochs_before_start"] <= 3, run
+assert run["steps_outside_plan"] == 0, run
+# The track itself (not judged by the report) against the truth the run did not see.
+truth = [(float(r["t_s"]), float(r["x_m"]), float(r["y_m"])) for r in csv.DictReader(open(sys.argv[3]))]
+rows = list(csv.DictReader(open(sys.argv[2] + "/tracks.csv")))
+errors = []
+for r in rows:  # the truth sample of the same emission (tracks.csv rounds t_s to the millisecond)
+    t, x, y = min(truth, key=lambda q: abs(q[0] - float(r["t_s"])))
+    assert abs(t - float(r["t_s"])) < 0.002, (t, r["t_s"])
+    errors.append(math.hypot(float(r["x_est_m"]) - x, float(r["y_est_m"]) - y))
+assert len(errors) == len(rows) >= 35 and sorted(errors)[len(errors) // 2] < 0.05, (len(errors), sorted(errors)[len(errors) // 2])
+PY
+  then
+    fail "acoustic without truth: did not start itself or track"
+  else
+    echo "ok   acoustic without truth: started itself and tracked"
+  fi
+fi
+
 printf 'extends: %s\nmethod: {inertial: true}\n' "$(realpath "$acoustic_scenario")" >"$work/acoustic_inertial.yaml"
 "$mirage" simulate "$work/acoustic_inertial.yaml" --out "$work/acoustic_inertial" --quiet 2>"$work/acoustic_inertial.err"
 status=$?

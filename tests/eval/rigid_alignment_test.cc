@@ -68,6 +68,18 @@ TEST(AlignRigid, AMirrorImageYieldsARotationNotAReflection) {
   ASSERT_TRUE(a.has_value());
   EXPECT_NEAR(a->rotation.determinant(), 1.0, 1e-9);
   EXPECT_LT((a->rotation * a->rotation.transpose() - Eigen::Matrix3d::Identity()).norm(), 1e-9);
+  // The nearest rotation: no other proper rotation (e.g. the flip of another axis) fits better.
+  const auto residual = [&](const Eigen::Matrix3d& R) {
+    double sum = 0.0;
+    for (std::size_t i = 0; i < estimate.size(); ++i) sum += (R * (estimate[i] - a->from_m) + a->to_m - reference[i]).squaredNorm();
+    return sum;
+  };
+  const double best = residual(a->rotation);
+  for (const Eigen::Matrix3d& other : {Eigen::Matrix3d(Eigen::Vector3d(-1.0, -1.0, 1.0).asDiagonal()),
+                                       Eigen::Matrix3d(Eigen::Vector3d(1.0, -1.0, -1.0).asDiagonal()),
+                                       Eigen::Matrix3d(Eigen::Vector3d(-1.0, 1.0, -1.0).asDiagonal())}) {
+    EXPECT_LE(best, residual(a->rotation * other) + 1e-9);
+  }
 }
 
 TEST(AlignRigid, TooFewOrUnpairedPointsGiveNone) {

@@ -8,8 +8,8 @@
 //  - The reflection fix (digest [SUG]): when det(U V^T) = -1 the last column of U is negated, so
 //    that the result is a rotation (the nearest one), never a mirror image.
 //  - planar: the rotation is about the vertical axis only and the translation horizontal (a
-//    method that estimates x, y at a known height); the 3-D SVD of coplanar points leaves the
-//    rotation about the in-plane axes undetermined.
+//    method that estimates x, y at a known height, whose heights are not estimates): a 2-D SVD of
+//    the horizontal coordinates, so that a planar track is never tilted.
 #pragma once
 
 #include <optional>
@@ -29,7 +29,8 @@ struct RigidTransform {
   [[nodiscard]] Vec3 Apply(const Vec3& x_m) const { return rotation * (x_m - from_m) + to_m; }
   /// The rotation's angle (rad), in [0, pi].
   [[nodiscard]] double AngleRad() const;
-  /// The displacement of the estimates' mean (m): to_m - from_m.
+  /// The displacement of the estimates' mean (m): to_m - from_m (the t of x' = R x + t is
+  /// to_m - R from_m; the two agree for a small rotation).
   [[nodiscard]] Vec3 TranslationM() const { return to_m - from_m; }
 };
 

@@ -50,4 +50,8 @@ double WalkedTime(double t_s, std::span<const Stop> stops);
 /// Length of the polyline (m).
 double PolylineLength(std::span<const Vec2> waypoints_m);
 
+/// Length of the path SampleTrajectory walks (m): the polyline with its corners rounded to
+/// turn_radius_m (the polyline's length for 0).
+double PathLength(std::span<const Vec2> waypoints_m, double turn_radius_m);
+
 }  // namespace mirage::geometry

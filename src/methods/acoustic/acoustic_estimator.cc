@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <tuple>
 
 #include <Eigen/Cholesky>
 
@@ -132,9 +133,14 @@ void AcousticEstimator::Initialize(const Prior& prior) {
 bool AcousticEstimator::InitializeFromEpoch(const core::Epoch& epoch) {
   // The snapshot estimators need no start: the first epoch with a fix is their start.
   if (!filter()) return Process(epoch).fixed;
-  // The filters: a fix from all the stamps anywhere in the floor plan.
-  if (world_.floor_plan.walls().empty()) return false;  // no region to search
-  const auto [lo, hi] = world_.floor_plan.Bounds();
+  // The filters: a fix from all the stamps anywhere in the floor plan; without one, anywhere
+  // below the microphones' footprint (ceiling microphones cover the area they serve).
+  Vec2 lo = mics_m_.front().head<2>(), hi = lo;
+  for (const auto& m : mics_m_) {
+    lo = lo.cwiseMin(m.head<2>());
+    hi = hi.cwiseMax(m.head<2>());
+  }
+  if (!world_.floor_plan.walls().empty()) std::tie(lo, hi) = world_.floor_plan.Bounds();
   MultipathSearchRegion region;
   region.lo_m = Vec3(lo.x(), lo.y(), 0.0);
   region.hi_m = Vec3(hi.x(), hi.y(), 0.0);
@@ -409,9 +415,12 @@ StepOutput AcousticEstimator::Filter(const core::Epoch& epoch) {
       region.hi_m.head<2>() = region.hi_m.head<2>().cwiseMin(hi);
     }
     SetHeightRange(region);
-    if (!reflectors_.empty() && StartFromStamps(epoch, region) != StartOutcome::kNoFix) {
-      // Started from the fixes, or waiting for the next emission's to confirm: the prior stands.
+    const StartOutcome start = reflectors_.empty() ? StartOutcome::kNoFix : StartFromStamps(epoch, region);
+    if (start != StartOutcome::kNoFix) {
+      // Started from the fixes, or waiting for the next emission's to confirm: then the prior
+      // stands, which is no fix of this emission.
       out.expected = static_cast<int>(world_.anchors.size());
+      out.fixed = start == StartOutcome::kStarted;
       out.agents.push_back(Estimate());
       return out;
     }

@@ -36,6 +36,14 @@ struct Explained {
   int stamps = 0;      ///< paired stamps within 3 innovation sigmas
   int receivers = 0;   ///< microphones with one
   double log_likelihood = 0.0;
+  double sum_sq_m2 = 0.0;  ///< the squared innovations of those stamps (m^2)
+  /// Better than other: the larger log-likelihood; without a clutter model (every candidate pairs
+  /// as many stamps) the more stamps within 3 sigma, then the smaller sum of their squares.
+  [[nodiscard]] bool BetterThan(const Explained& other, bool scored) const {
+    if (scored) return log_likelihood > other.log_likelihood;
+    if (stamps != other.stamps) return stamps > other.stamps;
+    return sum_sq_m2 < other.sum_sq_m2;
+  }
 };
 
 /// The window of width width_m over the sorted (value, stamp) pairs that holds the most distinct
@@ -158,8 +166,8 @@ class MultipathSearch {
 
   /// 3. The stamps' log-likelihood at x under the association's model: per paired stamp
   /// ln(P_d N(nu; 0, s) / lambda), per predicted path without a stamp ln(1 - P_d) (the terms of
-  /// path_association.h's gate). With P_d = 1 or lambda = 0 (no clutter model) the count of
-  /// paired stamps.
+  /// path_association.h's gate). With P_d = 1 or lambda = 0 (no clutter model) only the stamps
+  /// within 3 sigma and their squared innovations count (Explained::BetterThan).
   [[nodiscard]] Explained Likelihood(const Eigen::VectorXd& x, const Eigen::MatrixXd& P) const {
     Explained e;
     const double p_d = options_.detection_probability;
@@ -170,6 +178,7 @@ class MultipathSearch {
     for (const auto& row : rows) {
       if (std::abs(row.innovation_m) <= 3.0 * std::sqrt(row.s_m2)) {
         ++e.stamps;
+        e.sum_sq_m2 += row.innovation_m * row.innovation_m;
         heard[static_cast<std::size_t>(row.receiver)] = true;
       }
       e.log_likelihood += scored ? std::log(p_d / (lambda * std::sqrt(2.0 * std::numbers::pi * row.s_m2))) -
@@ -290,7 +299,8 @@ MultipathFix FixFromAllStamps(std::span<const geometry::Reflector3> reflectors, 
     if (!refined) continue;
     const auto& [x, P] = *refined;
     const Explained e = search.Likelihood(x, P);
-    if (best && e.log_likelihood <= best->log_likelihood) continue;
+    const bool scored = options.detection_probability < 1.0 && options.clutter_density_per_m > 0.0;
+    if (best && !e.BetterThan(*best, scored)) continue;
     best = e;
     const int d = search.dim();
     out.position_m = search.SenderOf(x);

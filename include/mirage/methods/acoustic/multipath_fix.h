@@ -22,9 +22,13 @@
 //    half-width for b) and whose rows are the stamps paired with the paths up to echo_order by the
 //    filters' association (path_association.h), redone at each iterate; Hampel IRLS
 //    (irls_update.h), as the REKF's update.
-// 3. Choice. The refined candidate that explains the most stamps within 3 sigma of a predicted
-//    path (ties: the smaller sum of their squared residuals). No fix when it explains fewer stamps
-//    than unknowns + 2 or fewer than 3 microphones (4 with the height).
+// 3. Choice. The refined candidate with the largest log-likelihood of the stamps: per stamp
+//    paired with a path ln(P_d N(nu; 0, s) / lambda), per predicted path without a stamp
+//    ln(1 - P_d); a count of the stamps within 3 sigma is flat where ~30 paths per microphone meet
+//    ~20 stamps (docs/methods/acoustic.md). Without a clutter model (P_d = 1 or lambda = 0): the
+//    most stamps within 3 sigma, ties to the smaller sum of their squares. No fix when the choice
+//    explains fewer stamps than unknowns + 2 or reaches fewer than 3 microphones (4 with the
+//    height).
 #pragma once
 
 #include <span>
