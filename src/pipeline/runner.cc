@@ -72,9 +72,9 @@ methods::World MakeWorld(const VariantContext& vc, const GivenPlan& given, int g
 
 // The error of an estimate: in the plane for a planar estimate (its z known, zero variance), in
 // 3-D otherwise.
-double EstimateError(const methods::AgentEstimate& estimate, const Vec3& truth_m) {
-  if (estimate.covariance_m2(2, 2) == 0.0) return (estimate.position_m.head<2>() - truth_m.head<2>()).norm();
-  return (estimate.position_m - truth_m).norm();
+double EstimateError(const Vec3& position_m, const Eigen::Matrix3d& covariance_m2, const Vec3& truth_m) {
+  if (covariance_m2(2, 2) == 0.0) return (position_m.head<2>() - truth_m.head<2>()).norm();
+  return (position_m - truth_m).norm();
 }
 
 // The track's estimates rigidly aligned to its truth (Experiment::align_rigid): the transform from
@@ -95,10 +95,7 @@ void AlignToTruth(AgentTrack& agent) {
     s.estimate_m = agent.alignment->Apply(s.estimate_m);
     s.covariance_m2 = R * s.covariance_m2 * R.transpose();
     if (!s.truth_m) continue;
-    methods::AgentEstimate aligned;
-    aligned.position_m = s.estimate_m;
-    aligned.covariance_m2 = s.covariance_m2;
-    s.error_m = EstimateError(aligned, *s.truth_m);
+    s.error_m = EstimateError(s.estimate_m, s.covariance_m2, *s.truth_m);
     if (s.height_error_m) s.height_error_m = std::abs(s.estimate_m.z() - s.truth_m->z());
   }
 }
@@ -261,7 +258,7 @@ RunRecord RunOne(const VariantContext& vc, int variant, int group, int run, cons
       s.truth_m = a < step->truth_m.size() ? step->truth_m[a] : std::nullopt;
       s.estimate_m = out.agents[a].position_m;
       s.covariance_m2 = out.agents[a].covariance_m2;
-      if (s.truth_m) s.error_m = EstimateError(out.agents[a], *s.truth_m);
+      if (s.truth_m) s.error_m = EstimateError(s.estimate_m, s.covariance_m2, *s.truth_m);
       if (s.truth_m && out.agents[a].covariance_m2(2, 2) != 0.0) {
         s.height_error_m = std::abs(out.agents[a].position_m.z() - s.truth_m->z());
       }

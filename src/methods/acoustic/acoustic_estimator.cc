@@ -65,6 +65,13 @@ AcousticEstimator::AcousticEstimator(const AcousticOptions& options, const World
   if (options_.echo_order > 0 && !plan.walls().empty() && std::isfinite(plan.ceiling_z_m())) {
     reflectors_ = geometry::ReflectorsFromPlan(plan);
   }
+  // The start's search (multipath_fix.h) with the filters' noise, echoes and association model.
+  start_search_.range_sigma_m = options_.range_sigma_m;
+  start_search_.echo_order = reflectors_.empty() ? 0 : options_.echo_order;
+  start_search_.detection_probability = options_.detection_probability;
+  start_search_.clutter_density_per_m = options_.clutter_density_per_m;
+  start_search_.irls = options_.irls;
+  start_search_.irls.robust = true;  // the search's refinement is robust whatever the filter's update
 }
 
 Vec3 AcousticEstimator::PositionOf(const Eigen::VectorXd& x) const {
@@ -133,48 +140,54 @@ void AcousticEstimator::Initialize(const Prior& prior) {
 bool AcousticEstimator::InitializeFromEpoch(const core::Epoch& epoch) {
   // The snapshot estimators need no start: the first epoch with a fix is their start.
   if (!filter()) return Process(epoch).fixed;
-  // The filters: a fix from all the stamps anywhere in the floor plan; without one, anywhere
-  // below the microphones' footprint (ceiling microphones cover the area they serve).
+  // The filters: a fix from all the stamps anywhere the sender may be.
+  return StartFromStamps(epoch, SearchRegion(false)) == StartOutcome::kStarted;
+}
+
+MultipathSearchRegion AcousticEstimator::SearchRegion(bool around_prior) const {
+  // Horizontally: the floor plan's bounds; without one, the microphones' footprint (ceiling
+  // microphones cover the area they serve); around the prior, its 3 sigma box inside them.
   Vec2 lo = mics_m_.front().head<2>(), hi = lo;
   for (const auto& m : mics_m_) {
     lo = lo.cwiseMin(m.head<2>());
     hi = hi.cwiseMax(m.head<2>());
   }
-  if (!world_.floor_plan.walls().empty()) std::tie(lo, hi) = world_.floor_plan.Bounds();
+  const bool plan = !world_.floor_plan.walls().empty();
+  if (plan) std::tie(lo, hi) = world_.floor_plan.Bounds();
   MultipathSearchRegion region;
-  region.lo_m = Vec3(lo.x(), lo.y(), 0.0);
-  region.hi_m = Vec3(hi.x(), hi.y(), 0.0);
-  SetHeightRange(region);
-  return StartFromStamps(epoch, region) == StartOutcome::kStarted;
-}
-
-void AcousticEstimator::SetHeightRange(MultipathSearchRegion& region) const {
   region.plan = &world_.floor_plan;
+  region.lo_m.head<2>() = lo;
+  region.hi_m.head<2>() = hi;
+  if (around_prior) {  // the state exists: the filter has started at its prior
+    const int d = dim();
+    const Eigen::VectorXd sigma_m = P_.diagonal().head(d).cwiseSqrt();
+    region.lo_m.head(d) = x_.head(d) - 3.0 * sigma_m;
+    region.hi_m.head(d) = x_.head(d) + 3.0 * sigma_m;
+    if (plan) {
+      region.lo_m.head<2>() = region.lo_m.head<2>().cwiseMax(lo);
+      region.hi_m.head<2>() = region.hi_m.head<2>().cwiseMin(hi);
+    }
+  }
   if (planar()) {
     region.lo_m.z() = region.hi_m.z() = height_m_;
-    return;
+    return region;
   }
-  // Between the floor and the highest a sender is carried, below the ceiling.
+  // In height: between the floor and the highest a sender is carried, below the ceiling (the
+  // whole of it when the prior's box leaves nothing).
   const double floor_z_m = world_.floor_plan.floor_z_m();
   const double top_m = std::min(world_.floor_plan.ceiling_z_m(), floor_z_m + options_.ground_echo.max_sender_height_m);
-  region.lo_m.z() = std::clamp(region.lo_m.z(), floor_z_m, top_m);
-  region.hi_m.z() = std::clamp(region.hi_m.z(), floor_z_m, top_m);
+  region.lo_m.z() = around_prior ? std::clamp(region.lo_m.z(), floor_z_m, top_m) : floor_z_m;
+  region.hi_m.z() = around_prior ? std::clamp(region.hi_m.z(), floor_z_m, top_m) : top_m;
   if (!(region.hi_m.z() > region.lo_m.z())) {
     region.lo_m.z() = floor_z_m;
     region.hi_m.z() = top_m;
   }
+  return region;
 }
 
 AcousticEstimator::StartOutcome AcousticEstimator::StartFromStamps(const core::Epoch& epoch,
                                                                    const MultipathSearchRegion& region) {
-  MultipathFixOptions o;
-  o.range_sigma_m = options_.range_sigma_m;
-  o.echo_order = reflectors_.empty() ? 0 : options_.echo_order;
-  o.detection_probability = options_.detection_probability;
-  o.clutter_density_per_m = options_.clutter_density_per_m;
-  o.irls = options_.irls;
-  o.irls.robust = true;  // the search's refinement is robust whatever the filter's update
-  const MultipathFix fix = FixFromAllStamps(reflectors_, mics_m_, Stamps(epoch, epoch.t_s), region, o);
+  const MultipathFix fix = FixFromAllStamps(reflectors_, mics_m_, Stamps(epoch, epoch.t_s), region, start_search_);
   if (!fix.found) {
     pending_start_.reset();
     return StartOutcome::kNoFix;
@@ -405,17 +418,7 @@ StepOutput AcousticEstimator::Filter(const core::Epoch& epoch) {
     // stamps inside the prior's 3 sigma box (multipath_fix.h) starts the filter. Without them
     // every echo is a direct path of some other position, and such a search finds those as
     // readily: the thesis's start stands (the prior mean, the emission the earliest stamps imply).
-    MultipathSearchRegion region;
-    const Eigen::VectorXd sigma_m = P_.diagonal().head(d).cwiseSqrt();
-    region.lo_m.head(d) = x_.head(d) - 3.0 * sigma_m;
-    region.hi_m.head(d) = x_.head(d) + 3.0 * sigma_m;
-    if (!world_.floor_plan.walls().empty()) {
-      const auto [lo, hi] = world_.floor_plan.Bounds();
-      region.lo_m.head<2>() = region.lo_m.head<2>().cwiseMax(lo);
-      region.hi_m.head<2>() = region.hi_m.head<2>().cwiseMin(hi);
-    }
-    SetHeightRange(region);
-    const StartOutcome start = reflectors_.empty() ? StartOutcome::kNoFix : StartFromStamps(epoch, region);
+    const StartOutcome start = reflectors_.empty() ? StartOutcome::kNoFix : StartFromStamps(epoch, SearchRegion(true));
     if (start != StartOutcome::kNoFix) {
       // Started from the fixes, or waiting for the next emission's to confirm: then the prior
       // stands, which is no fix of this emission.
