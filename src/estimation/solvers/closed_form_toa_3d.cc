@@ -21,26 +21,32 @@ bool Valid(std::span<const Vec3> receivers_m, std::span<const double> values_m) 
   return true;
 }
 
-// The receivers' centroid and principal axes (columns, by decreasing spread) with the variances.
+// The receivers' centroid, scatter and its eigenvalues (decreasing); the principal axes (columns,
+// by decreasing spread) only for coplanar receivers, where they are needed (the eigenvectors are
+// a fifth of a fix's cost).
 struct Layout {
   Vec3 centre = Vec3::Zero();
-  Eigen::Matrix3d axes = Eigen::Matrix3d::Identity();
+  Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
   Vec3 variance = Vec3::Zero();  // decreasing
+
+  [[nodiscard]] Eigen::Matrix3d Axes() const {
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
+    eig.computeDirect(scatter);  // closed-form 3 x 3; increasing eigenvalues
+    Eigen::Matrix3d axes;
+    for (int k = 0; k < 3; ++k) axes.col(k) = eig.eigenvectors().col(2 - k);
+    return axes;
+  }
 };
 
 Layout Analyse(std::span<const Vec3> receivers_m) {
   Layout layout;
   for (const Vec3& m : receivers_m) layout.centre += m;
   layout.centre /= static_cast<double>(receivers_m.size());
-  Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
-  for (const Vec3& m : receivers_m) scatter += (m - layout.centre) * (m - layout.centre).transpose();
-  scatter /= static_cast<double>(receivers_m.size());
+  for (const Vec3& m : receivers_m) layout.scatter += (m - layout.centre) * (m - layout.centre).transpose();
+  layout.scatter /= static_cast<double>(receivers_m.size());
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
-  eig.computeDirect(scatter);  // closed-form 3 x 3; increasing eigenvalues
-  for (int k = 0; k < 3; ++k) {
-    layout.axes.col(k) = eig.eigenvectors().col(2 - k);
-    layout.variance(k) = std::max(eig.eigenvalues()(2 - k), 0.0);
-  }
+  eig.computeDirect(layout.scatter, Eigen::EigenvaluesOnly);
+  for (int k = 0; k < 3; ++k) layout.variance(k) = std::max(eig.eigenvalues()(2 - k), 0.0);
   return layout;
 }
 
@@ -54,12 +60,6 @@ class Roots {
   // range slightly negative for a sender next to a receiver: allowed 3 rms more.
   void Add(const Vec3& position_m, double offset_m, SolverStatus root_status, bool least_squares = false) {
     if (out_.count >= 2) return;
-    NllsProblem problem;
-    problem.model = with_offset_ ? RowModel::kToa : RowModel::kRange;
-    problem.receivers_m = receivers_m_;
-    problem.values_m = values_m_;
-    SolverFix fix = AssessFix(problem, position_m, offset_m, std::nullopt);
-    if (fix.status == SolverStatus::kInvalidInput) return;
     // Causality (Eq. 5.4): every range rho_i - b must be >= 0, within the noise allowance.
     // The LS fits the squared rows, blind to the sign of rho_i - b: its noise allowance is 3 rms
     // of the sign-blind residuals |rho_i - b| - |S - M_i|.
@@ -75,6 +75,13 @@ class Roots {
     for (const double v : values_m_) {
       if (v - offset_m < -allowance) return;
     }
+    // Assessed only when admissible (the covariance is most of a fix's cost).
+    NllsProblem problem;
+    problem.model = with_offset_ ? RowModel::kToa : RowModel::kRange;
+    problem.receivers_m = receivers_m_;
+    problem.values_m = values_m_;
+    SolverFix fix = AssessFix(problem, position_m, offset_m, std::nullopt);
+    if (fix.status == SolverStatus::kInvalidInput) return;
     if (fix.status == SolverStatus::kOk) fix.status = root_status;
     fix.converged = true;
     out_.fixes[static_cast<std::size_t>(out_.count++)] = fix;
@@ -111,10 +118,11 @@ ToaRoots3d WithStatus(SolverStatus status) {
 ToaRoots3d SolveCoplanar(std::span<const Vec3> receivers_m, std::span<const double> values_m, bool with_offset,
                          const Layout& layout) {
   const std::size_t n = receivers_m.size();
+  const Eigen::Matrix3d axes = layout.Axes();
   std::vector<Vec3> in_plane(n);
   for (std::size_t i = 0; i < n; ++i) {
     const Vec3 d = receivers_m[i] - layout.centre;
-    in_plane[i] = Vec3(layout.axes.col(0).dot(d), layout.axes.col(1).dot(d), 0.0);
+    in_plane[i] = Vec3(axes.col(0).dot(d), axes.col(1).dot(d), 0.0);
   }
   const SolverFix planar = with_offset ? SolveLinearToa(in_plane, values_m, {}, 0.0)
                                        : SolveLinearRanges(in_plane, values_m, {}, 0.0);
@@ -128,8 +136,8 @@ ToaRoots3d SolveCoplanar(std::span<const Vec3> receivers_m, std::span<const doub
   }
   h2 /= static_cast<double>(n);
   const double h = std::sqrt(std::max(h2, 0.0));
-  const Vec3 foot = layout.centre + layout.axes.col(0) * s.x() + layout.axes.col(1) * s.y();
-  const Vec3& normal = layout.axes.col(2);
+  const Vec3 foot = layout.centre + axes.col(0) * s.x() + axes.col(1) * s.y();
+  const Vec3 normal = axes.col(2);
   Roots roots(receivers_m, values_m, with_offset);
   roots.Add(foot + h * normal, b, SolverStatus::kCoplanarHeightMirror);
   if (h > 0.0) roots.Add(foot - h * normal, b, SolverStatus::kCoplanarHeightMirror);

@@ -41,30 +41,76 @@ std::pair<Eigen::MatrixXd, int> PseudoInverse(const Eigen::MatrixXd& S) {
 using Normal = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 4, 4>;
 
 // The inverse of a symmetric positive (semi)definite normal matrix, or nullopt when singular:
-// LDLT (diagonal pivoting) of the column-normalised matrix, whose smallest pivot bounds its
-// smallest eigenvalue from above up to a small factor for p <= 4.
-std::optional<Normal> InverseIfRegular(const Normal& A) {
-  const Eigen::Index p = A.rows();
+// LDLT with diagonal pivoting (the largest remaining diagonal first, as Eigen::LDLT) of the
+// column-normalised matrix, whose smallest pivot bounds its smallest eigenvalue from above up to
+// a small factor for p <= 4. Written out for p <= 4: Eigen's solve against the identity goes
+// through its blocked triangular solver, which cost 3/4 of a closed-form fix
+// (bench/methods/acoustic_bench.cc).
+template <int p>
+std::optional<Eigen::Matrix<double, p, p>> InverseIfRegular(const Eigen::Matrix<double, p, p>& A) {
   if (!A.allFinite()) return std::nullopt;
-  Normal C = A;
-  Eigen::Vector4d scale = Eigen::Vector4d::Zero();
-  for (Eigen::Index k = 0; k < p; ++k) {
+  Eigen::Matrix<double, p, p> C;
+  Eigen::Matrix<double, p, 1> scale;
+  for (int k = 0; k < p; ++k) {
     if (!(A(k, k) > 0.0)) return std::nullopt;
     scale(k) = 1.0 / std::sqrt(A(k, k));
   }
-  for (Eigen::Index r = 0; r < p; ++r) {
-    for (Eigen::Index c = 0; c < p; ++c) C(r, c) *= scale(r) * scale(c);
+  for (int r = 0; r < p; ++r) {
+    for (int c = 0; c < p; ++c) C(r, c) = A(r, c) * scale(r) * scale(c);
   }
-  const Eigen::LDLT<Normal> ldlt(C);
-  if (ldlt.info() != Eigen::Success) return std::nullopt;
-  for (Eigen::Index k = 0; k < p; ++k) {
-    if (!(ldlt.vectorD()(k) > kRelativeEigenFloor)) return std::nullopt;
+  // In place: C's strict lower triangle becomes L, its diagonal D; order[k] = original index.
+  std::array<int, p> order{};
+  for (int k = 0; k < p; ++k) order[static_cast<std::size_t>(k)] = k;
+  for (int k = 0; k < p; ++k) {
+    int pivot = k;
+    for (int j = k + 1; j < p; ++j) {
+      if (std::abs(C(j, j)) > std::abs(C(pivot, pivot))) pivot = j;
+    }
+    if (pivot != k) {
+      C.row(k).swap(C.row(pivot));
+      C.col(k).swap(C.col(pivot));
+      std::swap(order[static_cast<std::size_t>(k)], order[static_cast<std::size_t>(pivot)]);
+    }
+    const double d = C(k, k);
+    if (!(d > kRelativeEigenFloor)) return std::nullopt;
+    for (int i = k + 1; i < p; ++i) C(i, k) /= d;
+    for (int i = k + 1; i < p; ++i) {
+      for (int j = k + 1; j <= i; ++j) {
+        C(i, j) -= C(i, k) * C(j, k) * d;
+        C(j, i) = C(i, j);
+      }
+    }
   }
-  Normal inverse = ldlt.solve(Normal(Normal::Identity(p, p)));
-  for (Eigen::Index r = 0; r < p; ++r) {
-    for (Eigen::Index c = 0; c < p; ++c) inverse(r, c) *= scale(r) * scale(c);
+  // L^-1 (unit lower triangular), then C^-1 = L^-T D^-1 L^-1 in the pivoted order.
+  Eigen::Matrix<double, p, p> L_inv = Eigen::Matrix<double, p, p>::Identity();
+  for (int i = 1; i < p; ++i) {
+    for (int j = 0; j < i; ++j) {
+      double sum = 0.0;
+      for (int k = j; k < i; ++k) sum += C(i, k) * L_inv(k, j);
+      L_inv(i, j) = -sum;
+    }
+  }
+  Eigen::Matrix<double, p, p> inverse;
+  for (int r = 0; r < p; ++r) {
+    for (int c = 0; c <= r; ++c) {
+      double sum = 0.0;
+      for (int k = r; k < p; ++k) sum += L_inv(k, r) * L_inv(k, c) / C(k, k);
+      const int orig_r = order[static_cast<std::size_t>(r)];
+      const int orig_c = order[static_cast<std::size_t>(c)];
+      inverse(orig_r, orig_c) = inverse(orig_c, orig_r) = sum * scale(orig_r) * scale(orig_c);
+    }
   }
   return inverse;
+}
+
+std::optional<Normal> InverseIfRegular(const Normal& A) {
+  const auto dynamic = [](const auto& inverse) { return inverse ? std::optional<Normal>(*inverse) : std::nullopt; };
+  switch (A.rows()) {
+    case 2: return dynamic(InverseIfRegular<2>(A));
+    case 3: return dynamic(InverseIfRegular<3>(A));
+    case 4: return dynamic(InverseIfRegular<4>(A));
+    default: return std::nullopt;  // the states have 2-4 unknowns
+  }
 }
 
 // The measurement side of a problem, fixed over the iterations.
@@ -234,7 +280,8 @@ std::optional<Linearization> Linearize(const NllsProblem& problem, const Eigen::
 namespace {
 
 // Writes the p x p state covariance into [x, y, z, b] (state entry a is slot used[a]).
-void Scatter(const Normal& covariance, bool known_height, SolverFix& fix) {
+template <class Matrix>
+void Scatter(const Matrix& covariance, bool known_height, SolverFix& fix) {
   std::array<int, 4> used{0, 1, 2, 3};
   if (known_height) used = {0, 1, 3, 3};
   fix.covariance_m2.setZero();
@@ -248,10 +295,13 @@ void Scatter(const Normal& covariance, bool known_height, SolverFix& fix) {
 // The DOP, covariance and status from the normal matrices: unit (H^T R1^+ H) and weighted.
 // `middle` is H^T W Sigma W H for the sandwich, or nullopt when W = Sigma^-1 (then the
 // covariance is the inverse itself). sigma2_hat scales it when no sigmas were given.
-void Finish(const Normal& unit_normal, const Normal& normal, const std::optional<Normal>& middle, double sigma2_hat,
+// Matrix: Normal, or a fixed p x p matrix (the independent rows' path).
+template <class Matrix>
+void Finish(const Matrix& unit_normal, const Matrix& normal, const std::optional<Matrix>& middle, double sigma2_hat,
             bool known_height, SolverFix& fix) {
   const auto unit_inverse = InverseIfRegular(unit_normal);
-  const auto inverse = InverseIfRegular(normal);
+  // Without given sigmas the two normal matrices are one (the closed-form solvers' case).
+  const auto inverse = normal == unit_normal ? unit_inverse : InverseIfRegular(normal);
   if (!unit_inverse || !inverse) {
     fix.status = SolverStatus::kSingularNormalMatrix;
     fix.dop = Infinity();
@@ -260,21 +310,23 @@ void Finish(const Normal& unit_normal, const Normal& normal, const std::optional
   }
   const int position_columns = known_height ? 2 : 3;
   fix.dop = std::sqrt(unit_inverse->topLeftCorner(position_columns, position_columns).trace());  // Eq. 8.8-8.12
-  const Normal covariance = middle ? Normal(*inverse * *middle * *inverse) : *inverse;
+  const Matrix covariance = middle ? Matrix(*inverse * *middle * *inverse) : *inverse;
   Scatter(covariance * sigma2_hat, known_height, fix);
   fix.status = SolverStatus::kOk;
 }
 
-// TOA and range rows: independent, W = diag(1 / sigma_i^2). Fixed-size accumulation, no
-// row-covariance matrix: the path of the closed-form and linear solvers.
-void AssessIndependent(const NllsProblem& problem, const Vec3& position, double offset,
-                       std::optional<double> known_height_m, SolverFix& fix) {
+// TOA and range rows: independent, W = diag(1 / sigma_i^2). Accumulated in fixed p x p storage
+// (no row-covariance matrix, no heap): the path of the closed-form and linear solvers, where
+// Eigen's dynamic-size products cost more than the solve itself (bench/methods/acoustic_bench.cc).
+template <int p>
+void AssessIndependent(const NllsProblem& problem, const Vec3& position, double offset, bool known_height,
+                       SolverFix& fix) {
+  using Matrix = Eigen::Matrix<double, p, p>;
   const bool with_offset = problem.model == RowModel::kToa;
-  const int p = StateDimension(problem.model, known_height_m.has_value());
-  const int position_columns = known_height_m ? 2 : 3;
-  Normal unit_normal = Normal::Zero(p, p);
-  Normal normal = Normal::Zero(p, p);
-  Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 4, 1> h(p);
+  const int position_columns = known_height ? 2 : 3;
+  Matrix unit_normal = Matrix::Zero();
+  Matrix normal = Matrix::Zero();
+  Eigen::Matrix<double, p, 1> h = Eigen::Matrix<double, p, 1>::Zero();
   double sum_r2 = 0.0;
   const std::size_t n = problem.receivers_m.size();
   for (std::size_t i = 0; i < n; ++i) {
@@ -288,14 +340,27 @@ void AssessIndependent(const NllsProblem& problem, const Vec3& position, double 
     if (with_offset) h(p - 1) = 1.0;
     const double r = problem.values_m[i] - prediction->predicted_m;
     sum_r2 += r * r;
-    const double w = problem.sigmas_m.empty() ? 1.0 : 1.0 / (problem.sigmas_m[i] * problem.sigmas_m[i]);
     unit_normal.noalias() += h * h.transpose();
-    normal.noalias() += w * h * h.transpose();
+    if (!problem.sigmas_m.empty()) {
+      const double w = 1.0 / (problem.sigmas_m[i] * problem.sigmas_m[i]);
+      normal.noalias() += w * h * h.transpose();
+    }
   }
+  if (problem.sigmas_m.empty()) normal = unit_normal;
   fix.rms_m = std::sqrt(sum_r2 / static_cast<double>(n));
   const int dof = static_cast<int>(n) - p;
   const double sigma2_hat = !problem.sigmas_m.empty() ? 1.0 : (dof > 0 ? sum_r2 / dof : 0.0);
-  Finish(unit_normal, normal, std::nullopt, sigma2_hat, known_height_m.has_value(), fix);
+  Finish<Matrix>(unit_normal, normal, std::nullopt, sigma2_hat, known_height, fix);
+}
+
+void AssessIndependent(const NllsProblem& problem, const Vec3& position, double offset,
+                       std::optional<double> known_height_m, SolverFix& fix) {
+  const bool known_height = known_height_m.has_value();
+  switch (StateDimension(problem.model, known_height)) {
+    case 2: AssessIndependent<2>(problem, position, offset, known_height, fix); break;
+    case 3: AssessIndependent<3>(problem, position, offset, known_height, fix); break;
+    default: AssessIndependent<4>(problem, position, offset, known_height, fix); break;
+  }
 }
 
 // Fills rms, covariance, dop and status of `fix` at `state`, any model.
@@ -326,7 +391,7 @@ void Assess(const NllsProblem& problem, const RowSet& rows, const Eigen::VectorX
     const int dof = rows.independent_rows - static_cast<int>(state.size());
     sigma2_hat = dof > 0 ? Cost(residual, rows.unit_weight) / dof : 0.0;
   }
-  Finish(Normal(H.transpose() * rows.unit_weight * H), Normal(H.transpose() * WH),
+  Finish<Normal>(Normal(H.transpose() * rows.unit_weight * H), Normal(H.transpose() * WH),
          Normal(WH.transpose() * rows.sigma * WH), sigma2_hat, known_height_m.has_value(), fix);
 }
 
@@ -341,8 +406,16 @@ SolverFix AssessFix(const NllsProblem& problem, const Vec3& position_m, double o
     fix.status = SolverStatus::kInvalidInput;
     return fix;
   }
-  const RowSet rows = problem.model == RowModel::kTdoa ? BuildRows(problem) : RowSet{};
-  Assess(problem, rows, PackState(problem.model, position_m, offset_m, known_height_m), known_height_m, fix);
+  if (problem.model != RowModel::kTdoa) {
+    // Independent rows need no state vector nor row set (no heap): the closed-form solvers' path.
+    fix.position_m.z() = known_height_m.value_or(position_m.z());
+    if (problem.model != RowModel::kToa) fix.offset_m = 0.0;
+    fix.offset_estimated = problem.model == RowModel::kToa;
+    AssessIndependent(problem, fix.position_m, fix.offset_m, known_height_m, fix);
+  } else {
+    Assess(problem, BuildRows(problem), PackState(problem.model, position_m, offset_m, known_height_m), known_height_m,
+           fix);
+  }
   fix.converged = fix.status == SolverStatus::kOk;
   return fix;
 }

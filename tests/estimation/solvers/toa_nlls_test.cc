@@ -2,6 +2,7 @@
 #include "mirage/estimation/solvers/toa_nlls.h"
 
 #include <cmath>
+#include <optional>
 #include <vector>
 
 #include <Eigen/Dense>
@@ -335,6 +336,58 @@ TEST(ToaNlls, DopEqualsTheAnalyticValueOfSymmetricLayouts) {
       const SolverFix tdoa = AssessFix(MakeProblem(c, cube, rho), sender, 0.0, std::nullopt);
       ASSERT_EQ(tdoa.status, SolverStatus::kOk);
       EXPECT_NEAR(tdoa.dop, expected, 1e-9) << "reference " << reference;
+    }
+  }
+}
+
+// The assessed covariance is (H^T R^-1 H)^-1 with per-row sigmas, and the DOP sqrt(trace) of the
+// unit-sigma inverse's position block, for every state layout (2-4 unknowns): against Eigen's
+// general inverse of the normal matrix built here from the row geometry.
+TEST(ToaNlls, AssessedCovarianceIsTheInverseNormalMatrixForEveryStateSize) {
+  core::Rng rng(11);
+  for (int trial = 0; trial < 20; ++trial) {
+    const auto receivers = RandomReceivers(rng, 7);
+    const Vec3 sender = RandomSender(rng);
+    std::vector<double> sigmas;
+    for (int i = 0; i < 7; ++i) sigmas.push_back(rng.Uniform(0.02, 0.3));
+    for (const RowModel model : {RowModel::kToa, RowModel::kRange}) {
+      for (const bool known_height : {false, true}) {
+        const bool with_offset = model == RowModel::kToa;
+        const int position_columns = known_height ? 2 : 3;
+        const int p = position_columns + (with_offset ? 1 : 0);
+        Eigen::MatrixXd H(7, p);
+        Eigen::VectorXd w(7);
+        for (int i = 0; i < 7; ++i) {
+          const Vec3 u = (sender - receivers[static_cast<std::size_t>(i)]).normalized();
+          H.row(i).head(position_columns) = u.head(position_columns).transpose();
+          if (with_offset) H(i, p - 1) = 1.0;
+          w(i) = 1.0 / (sigmas[static_cast<std::size_t>(i)] * sigmas[static_cast<std::size_t>(i)]);
+        }
+        const Eigen::MatrixXd expected = (H.transpose() * w.asDiagonal() * H).inverse();
+        const Eigen::MatrixXd unit = (H.transpose() * H).inverse();
+        NllsProblem problem;
+        problem.model = model;
+        problem.receivers_m = receivers;
+        const auto values = Values(receivers, sender, with_offset ? 2.0 : 0.0);
+        problem.values_m = values;
+        problem.sigmas_m = sigmas;
+        const auto height = known_height ? std::optional<double>(sender.z()) : std::nullopt;
+        const SolverFix fix = AssessFix(problem, sender, with_offset ? 2.0 : 0.0, height);
+        ASSERT_EQ(fix.status, SolverStatus::kOk);
+        // [x, y, z, b] slots of the state entries.
+        std::vector<int> slot{0, 1};
+        if (!known_height) slot.push_back(2);
+        if (with_offset) slot.push_back(3);
+        for (int a = 0; a < p; ++a) {
+          for (int b = 0; b < p; ++b) {
+            EXPECT_NEAR(fix.covariance_m2(slot[static_cast<std::size_t>(a)], slot[static_cast<std::size_t>(b)]),
+                        expected(a, b), 1e-9 * expected.norm())
+                << "trial " << trial << " p " << p << " entry " << a << "," << b;
+          }
+        }
+        EXPECT_NEAR(fix.dop, std::sqrt(unit.topLeftCorner(position_columns, position_columns).trace()), 1e-9)
+            << "trial " << trial << " p " << p;
+      }
     }
   }
 }
