@@ -317,7 +317,6 @@ std::vector<AcousticEstimator::Row> AcousticEstimator::AssociateRows(const Stamp
                                                                       const Eigen::VectorXd& x_lin,
                                                                       const Eigen::MatrixXd& P_lin, int echo_order) const {
   const int d = dim();
-  const int n = static_cast<int>(x_lin.size());
   const Vec3 sender_m = PositionOf(x_lin);
   const double r_m2 = options_.range_sigma_m * options_.range_sigma_m;
   // Per microphone its predicted paths (direct, and echoes to echo_order) and the stamps paired
@@ -325,30 +324,22 @@ std::vector<AcousticEstimator::Row> AcousticEstimator::AssociateRows(const Stamp
   std::vector<Row> echo_rows;
   std::vector<ChosenStamp> direct;
   std::vector<PredictedPath> direct_paths(stamps.size());
+  const PathStateLayout layout{.position_columns = d, .offset_column = 2 * d};
   for (std::size_t i = 0; i < stamps.size(); ++i) {
     if (stamps[i].empty()) continue;
-    const auto paths = PredictPaths(reflectors_, sender_m, world_.anchors[i].position_m, x_lin(2 * d), echo_order);
-    std::vector<double> predicted_m, s_m2;
-    for (const auto& path : paths) {
-      Eigen::RowVectorXd h = Eigen::RowVectorXd::Zero(n);
-      h.head(d) = path.d_sender.head(d).transpose();
-      h(2 * d) = 1.0;
-      predicted_m.push_back(path.predicted_m);
-      s_m2.push_back((h * P_lin * h.transpose())(0, 0) + r_m2);
-    }
-    for (const auto& pair : AssociatePaths(predicted_m, s_m2, stamps[i], options_.detection_probability,
-                                           options_.clutter_density_per_m)) {
-      const auto& path = paths[static_cast<std::size_t>(pair.path)];
-      const double z_m = stamps[i][static_cast<std::size_t>(pair.stamp)];
+    for (const auto& a : AssociateMicrophone(reflectors_, sender_m, world_.anchors[i].position_m, x_lin(2 * d), echo_order,
+                                             stamps[i], P_lin, layout, r_m2, options_.detection_probability,
+                                             options_.clutter_density_per_m)) {
+      const double z_m = stamps[i][static_cast<std::size_t>(a.stamp)];
       if (options_.gate_chi2 > 0.0) {
-        const double nu = z_m - path.predicted_m;
-        if (nu * nu > options_.gate_chi2 * s_m2[static_cast<std::size_t>(pair.path)]) continue;
+        const double nu = z_m - a.path.predicted_m;
+        if (nu * nu > options_.gate_chi2 * a.innovation_var_m2) continue;
       }
-      if (path.order == 0) {
+      if (a.path.order == 0) {
         direct.push_back({static_cast<int>(i), z_m});
-        direct_paths[i] = path;
+        direct_paths[i] = a.path;
       } else {
-        echo_rows.push_back({static_cast<int>(i), z_m, path});
+        echo_rows.push_back({static_cast<int>(i), z_m, a.path});
       }
     }
   }

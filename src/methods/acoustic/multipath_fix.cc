@@ -240,30 +240,21 @@ class MultipathSearch {
   /// without a stamp.
   std::vector<PairedRow> Associate(const Eigen::VectorXd& x, const Eigen::MatrixXd& P,
                                    double* missed_log_likelihood = nullptr) const {
-    const int n = unknowns();
     const Vec3 sender_m = SenderOf(x);
     std::vector<PairedRow> rows;
+    const PathStateLayout layout{.position_columns = dim_, .offset_column = dim_};
+    const bool scored = options_.detection_probability < 1.0 && options_.clutter_density_per_m > 0.0;
     for (std::size_t i = 0; i < mics_m_.size(); ++i) {
-      const auto paths = PredictPaths(reflectors_, sender_m, mics_m_[i], x(dim_), options_.echo_order);
-      std::vector<double> predicted_m, s_m2;
-      std::vector<Eigen::RowVectorXd> h;
-      for (const auto& path : paths) {
-        Eigen::RowVectorXd row = Eigen::RowVectorXd::Zero(n);
-        row.head(dim_) = path.d_sender.head(dim_).transpose();
-        row(dim_) = 1.0;
-        predicted_m.push_back(path.predicted_m);
-        s_m2.push_back((row * P * row.transpose())(0, 0) + r2_m2_);
-        h.push_back(std::move(row));
+      int unpaired = 0;
+      for (auto& a : AssociateMicrophone(reflectors_, sender_m, mics_m_[i], x(dim_), options_.echo_order, stamps_m_[i], P,
+                                         layout, r2_m2_, options_.detection_probability,
+                                         options_.clutter_density_per_m, &unpaired)) {
+        rows.push_back({static_cast<int>(i), a.stamp, a.path_index,
+                        stamps_m_[i][static_cast<std::size_t>(a.stamp)] - a.path.predicted_m, a.innovation_var_m2,
+                        std::move(a.h)});
       }
-      const auto pairs = AssociatePaths(predicted_m, s_m2, stamps_m_[i], options_.detection_probability,
-                                        options_.clutter_density_per_m);
-      for (const auto& pair : pairs) {
-        const auto j = static_cast<std::size_t>(pair.path);
-        rows.push_back({static_cast<int>(i), pair.stamp, pair.path,
-                        stamps_m_[i][static_cast<std::size_t>(pair.stamp)] - predicted_m[j], s_m2[j], h[j]});
-      }
-      if (missed_log_likelihood != nullptr && options_.detection_probability < 1.0 && options_.clutter_density_per_m > 0.0) {
-        *missed_log_likelihood += static_cast<double>(paths.size() - pairs.size()) * std::log(1.0 - options_.detection_probability);
+      if (missed_log_likelihood != nullptr && scored) {
+        *missed_log_likelihood += static_cast<double>(unpaired) * std::log(1.0 - options_.detection_probability);
       }
     }
     return rows;

@@ -7,6 +7,8 @@
 #include <limits>
 #include <numbers>
 
+#include <Eigen/Dense>
+
 #include "mirage/estimation/meas/toa.h"
 
 namespace mirage::methods::acoustic {
@@ -65,6 +67,34 @@ std::vector<PathStampPair> AssociatePaths(std::span<const double> predicted_m, s
     if (path_taken[static_cast<std::size_t>(c.path)] || stamp_taken[static_cast<std::size_t>(c.stamp)]) continue;
     path_taken[static_cast<std::size_t>(c.path)] = stamp_taken[static_cast<std::size_t>(c.stamp)] = true;
     out.push_back({c.path, c.stamp});
+  }
+  return out;
+}
+
+std::vector<AssociatedPath> AssociateMicrophone(std::span<const geometry::Reflector3> reflectors, const Vec3& sender_m,
+                                                const Vec3& mic_m, double offset_m, int echo_order,
+                                                std::span<const double> stamps_m, const Eigen::MatrixXd& P,
+                                                const PathStateLayout& layout, double range_var_m2,
+                                                double detection_probability, double clutter_density_per_m,
+                                                int* unpaired_paths) {
+  const auto paths = PredictPaths(reflectors, sender_m, mic_m, offset_m, echo_order);
+  std::vector<double> predicted_m, s_m2;
+  std::vector<Eigen::RowVectorXd> h;
+  for (const auto& path : paths) {
+    Eigen::RowVectorXd row = Eigen::RowVectorXd::Zero(P.rows());
+    row.head(layout.position_columns) = path.d_sender.head(layout.position_columns).transpose();
+    row(layout.offset_column) = 1.0;
+    predicted_m.push_back(path.predicted_m);
+    s_m2.push_back((row * P * row.transpose())(0, 0) + range_var_m2);
+    h.push_back(std::move(row));
+  }
+  const auto pairs = AssociatePaths(predicted_m, s_m2, stamps_m, detection_probability, clutter_density_per_m);
+  if (unpaired_paths != nullptr) *unpaired_paths += static_cast<int>(paths.size() - pairs.size());
+  std::vector<AssociatedPath> out;
+  out.reserve(pairs.size());
+  for (const auto& pair : pairs) {
+    const auto j = static_cast<std::size_t>(pair.path);
+    out.push_back({paths[j], pair.path, pair.stamp, s_m2[j], std::move(h[j])});
   }
   return out;
 }

@@ -10,6 +10,7 @@
 #include <limits>
 #include <vector>
 
+#include <Eigen/Core>
 #include <gtest/gtest.h>
 
 namespace mirage::methods::acoustic {
@@ -89,6 +90,41 @@ TEST(AssociatePaths, PairsEachPathAndStampOnceByNearestNeighbour) {
   ASSERT_EQ(open.size(), 3u);
   EXPECT_EQ(open[2].path, 2);
   EXPECT_EQ(open[2].stamp, 0);  // 9.0 is 5 m from 14, 30.0 is 16 m
+}
+
+// One microphone's association at a state: the innovation variance is h P h^T + sigma^2 with h the
+// path's direction on the layout's position columns and 1 on its offset column (here a planar
+// filter's [x, y, vx, vy, b] state), the pairs are those of AssociatePaths on the same numbers,
+// and the predicted paths without a stamp are counted.
+TEST(AssociateMicrophone, InnovationVarianceFollowsTheStateLayout) {
+  const auto room = Room();
+  const Vec3 sender(2.0, 1.5, 1.1), mic(6.5, 4.0, 2.8);
+  const double offset_m = 0.7, range_var_m2 = 0.03 * 0.03;
+  Eigen::MatrixXd P = Eigen::MatrixXd::Zero(5, 5);
+  P.diagonal() << 0.04, 0.09, 1.0, 1.0, 0.25;
+  P(0, 4) = P(4, 0) = 0.01;
+  const PathStateLayout layout{.position_columns = 2, .offset_column = 4};
+  const auto paths = PredictPaths(room, sender, mic, offset_m, 1);
+  // Stamps on the direct path and on the third path, 1 cm late.
+  const std::vector<double> stamps{paths[0].predicted_m + 0.01, paths[2].predicted_m + 0.01};
+  int unpaired = 0;
+  const auto pairs = AssociateMicrophone(room, sender, mic, offset_m, 1, stamps, P, layout, range_var_m2, 0.9, 0.05,
+                                         &unpaired);
+  ASSERT_EQ(pairs.size(), 2u);
+  EXPECT_EQ(unpaired, static_cast<int>(paths.size()) - 2);
+  for (const auto& a : pairs) {
+    const Vec3& u = paths[static_cast<std::size_t>(a.path_index)].d_sender;
+    const double expected = 0.04 * u.x() * u.x() + 0.09 * u.y() * u.y() + 0.25 + 2.0 * 0.01 * u.x() + range_var_m2;
+    EXPECT_NEAR(a.innovation_var_m2, expected, 1e-12);
+    ASSERT_EQ(a.h.size(), 5);
+    EXPECT_DOUBLE_EQ(a.h(0), u.x());
+    EXPECT_DOUBLE_EQ(a.h(1), u.y());
+    EXPECT_EQ(a.h(2), 0.0);
+    EXPECT_EQ(a.h(4), 1.0);
+    EXPECT_NEAR(stamps[static_cast<std::size_t>(a.stamp)] - a.path.predicted_m, 0.01, 1e-12);
+  }
+  EXPECT_TRUE((pairs[0].path_index == 0 && pairs[1].path_index == 2) ||
+              (pairs[0].path_index == 2 && pairs[1].path_index == 0));
 }
 
 }  // namespace

@@ -18,6 +18,8 @@
 #include <span>
 #include <vector>
 
+#include <Eigen/Core>
+
 #include "mirage/core/types.h"
 #include "mirage/geometry/reflector_3d.h"
 
@@ -64,5 +66,37 @@ struct PathStampPair {
 std::vector<PathStampPair> AssociatePaths(std::span<const double> predicted_m, std::span<const double> innovation_var_m2,
                                           std::span<const double> stamps_m, double detection_probability,
                                           double clutter_density_per_m);
+
+/// Where a state vector holds the sender's position and the emission offset b (m).
+struct PathStateLayout {
+  /// The position's columns 0 .. position_columns - 1: 2 (x, y; planar) or 3.
+  int position_columns = 3;
+  /// The column of b.
+  int offset_column = 3;
+};
+
+/// One path of a microphone paired with one of its stamps.
+struct AssociatedPath {
+  PredictedPath path;
+  int path_index = 0;               ///< among the microphone's predicted paths
+  int stamp = 0;                    ///< index into the microphone's stamps
+  double innovation_var_m2 = 0.0;   ///< s = h P h^T + sigma^2 (m^2)
+  Eigen::RowVectorXd h;             ///< d prediction / d state: d_sender on the position, 1 on b
+};
+
+/// One microphone's association at a state: its predicted paths (PredictPaths), each path's
+/// innovation variance from the state covariance, and the pairs of AssociatePaths. Shared by the
+/// filters' update and their start from all stamps (multipath_fix.h).
+/// @param reflectors, sender_m, mic_m, offset_m, echo_order   as PredictPaths
+/// @param stamps_m               the microphone's stamps (m)
+/// @param P                      the state covariance (m^2), layout as `layout`
+/// @param range_var_m2           one stamp's variance (m^2)
+/// @param unpaired_paths         if given, gains the number of predicted paths left without a stamp
+std::vector<AssociatedPath> AssociateMicrophone(std::span<const geometry::Reflector3> reflectors, const Vec3& sender_m,
+                                                const Vec3& mic_m, double offset_m, int echo_order,
+                                                std::span<const double> stamps_m, const Eigen::MatrixXd& P,
+                                                const PathStateLayout& layout, double range_var_m2,
+                                                double detection_probability, double clutter_density_per_m,
+                                                int* unpaired_paths = nullptr);
 
 }  // namespace mirage::methods::acoustic
