@@ -45,5 +45,26 @@ TEST(AcousticHoldout, StartsItselfAndFromAWidePriorWithoutLosingARun) {
   EXPECT_LT(summaries[0].overall.error.max, 0.5);
 }
 
+// The room returns echoes of every order; the filter predicts them to order 2. With the room
+// simulated to order 3 (about 60 paths per microphone instead of 25) single-emission fixes are
+// often wrong and the start waits for one that the next emission confirms, while the walker walks
+// on at 1.5 m/s. The search around the waiting prior widens with the velocity prior over the time
+// waited (the motion model, AcousticEstimator::SearchRegion); measured 5 of 20 runs lost with it,
+// 12 of 20 without (the prior's box frozen at the first emission). Not solved: see
+// docs/results/acoustic.md, "Echoes beyond the predicted order".
+TEST(AcousticHoldout, AWaitingStartWidensItsSearchWithTheMotionModel) {
+  io::ScenarioOverrides overrides;
+  overrides.runs = 20;
+  overrides.threads = 0;
+  const io::Scenario scenario =
+      io::LoadScenario(std::string(MIRAGE_SOURCE_DIR) + "/examples/acoustic_holdout.yaml", overrides);
+  ASSERT_FALSE(scenario.variants.empty());
+  std::vector<Variant> variants(1, scenario.variants.front());  // the default planar REKF
+  variants[0].experiment.acoustic.max_order = 3;
+  const auto summaries = Summarize(variants, RunExperiment(variants));
+  ASSERT_EQ(summaries.size(), 1u);
+  EXPECT_LE(summaries[0].overall.diverged_runs, 8);
+}
+
 }  // namespace
 }  // namespace mirage::pipeline

@@ -130,6 +130,7 @@ void AcousticEstimator::Start(const Vec3& position_m, double position_sigma_m,
   }
   started_ = true;
   have_emission_ = false;
+  first_search_s_.reset();
 }
 
 void AcousticEstimator::Initialize(const Prior& prior) {
@@ -144,7 +145,7 @@ bool AcousticEstimator::InitializeFromEpoch(const core::Epoch& epoch) {
   return StartFromStamps(epoch, SearchRegion(false)) == StartOutcome::kStarted;
 }
 
-MultipathSearchRegion AcousticEstimator::SearchRegion(bool around_prior) const {
+MultipathSearchRegion AcousticEstimator::SearchRegion(bool around_prior, double elapsed_s) const {
   // Horizontally: the floor plan's bounds; without one, the microphones' footprint (ceiling
   // microphones cover the area they serve); around the prior, its 3 sigma box inside them.
   Vec2 lo = mics_m_.front().head<2>(), hi = lo;
@@ -159,10 +160,15 @@ MultipathSearchRegion AcousticEstimator::SearchRegion(bool around_prior) const {
   region.lo_m.head<2>() = lo;
   region.hi_m.head<2>() = hi;
   if (around_prior) {  // the state exists: the filter has started at its prior
+    // The prior moved on by the motion model over the time the start has waited (elapsed_s):
+    // the velocity's spread widens the box, so a sender that walks on while the start waits
+    // stays inside it.
     const int d = dim();
-    const Eigen::VectorXd sigma_m = P_.diagonal().head(d).cwiseSqrt();
-    region.lo_m.head(d) = x_.head(d) - 3.0 * sigma_m;
-    region.hi_m.head(d) = x_.head(d) + 3.0 * sigma_m;
+    const Eigen::VectorXd centre_m = x_.head(d) + x_.segment(d, d) * elapsed_s;
+    const Eigen::VectorXd sigma_m =
+        (P_.diagonal().head(d) + P_.diagonal().segment(d, d) * elapsed_s * elapsed_s).cwiseSqrt();
+    region.lo_m.head(d) = centre_m - 3.0 * sigma_m;
+    region.hi_m.head(d) = centre_m + 3.0 * sigma_m;
     if (plan) {
       region.lo_m.head<2>() = region.lo_m.head<2>().cwiseMax(lo);
       region.hi_m.head<2>() = region.hi_m.head<2>().cwiseMin(hi);
@@ -409,7 +415,10 @@ StepOutput AcousticEstimator::Filter(const core::Epoch& epoch) {
     // stamps inside the prior's 3 sigma box (multipath_fix.h) starts the filter. Without them
     // every echo is a direct path of some other position, and such a search finds those as
     // readily: the thesis's start stands (the prior mean, the emission the earliest stamps imply).
-    const StartOutcome start = reflectors_.empty() ? StartOutcome::kNoFix : StartFromStamps(epoch, SearchRegion(true));
+    if (!first_search_s_) first_search_s_ = epoch.t_s;
+    const StartOutcome start = reflectors_.empty()
+                                   ? StartOutcome::kNoFix
+                                   : StartFromStamps(epoch, SearchRegion(true, epoch.t_s - *first_search_s_));
     if (start != StartOutcome::kNoFix) {
       // Started from the fixes, or waiting for the next emission's to confirm: then the prior
       // stands, which is no fix of this emission.

@@ -122,10 +122,11 @@ class AcousticEstimator final : public Estimator {
   /// the offsets' 3 sigma), its position within the velocity prior's 3 sigma reach plus the fixes'.
   [[nodiscard]] bool Follows(const PendingStart& first, const PendingStart& second) const;
   /// Where the start's search looks: the floor plan (or the microphones' footprint), or with
-  /// around_prior the prior's 3 sigma box inside it; in height the known height (planar), else
-  /// between the floor and the highest a sender is carried (ground_echo.max_sender_height_m)
-  /// below the ceiling.
-  [[nodiscard]] MultipathSearchRegion SearchRegion(bool around_prior) const;
+  /// around_prior the prior's 3 sigma box inside it, moved on by the motion model over the
+  /// elapsed_s the start has waited (sigma^2 = P_pos + P_vel elapsed_s^2); in height the known
+  /// height (planar), else between the floor and the highest a sender is carried
+  /// (ground_echo.max_sender_height_m) below the ceiling.
+  [[nodiscard]] MultipathSearchRegion SearchRegion(bool around_prior, double elapsed_s = 0.0) const;
   [[nodiscard]] bool filter() const { return options_.estimator == "rekf" || options_.estimator == "ekf"; }
   void Predict(int intervals);
   /// One stamp paired with a predicted path of its microphone.
@@ -172,6 +173,7 @@ class AcousticEstimator final : public Estimator {
   bool have_emission_ = false;   // b refers to an emission (set at the first epoch with stamps)
   std::optional<Vec3> start_m_;  // a given start, waiting for its first emission
   std::optional<PendingStart> pending_start_;
+  std::optional<double> first_search_s_;  // the time of the first start search around the prior
   MultipathFixOptions start_search_;  // the start's search, set once from the options
   std::optional<GroundEchoFixer> ground_echo_;  // estimator "ground_echo"
   core::Rng rng_;                // the NLLS's random starts (fixed seed: results are reproducible)
