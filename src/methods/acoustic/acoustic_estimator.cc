@@ -235,6 +235,52 @@ bool AcousticEstimator::Follows(const PendingStart& first, const PendingStart& s
   return (second.fix.position_m - first.fix.position_m).head(d).norm() <= reach_m;
 }
 
+std::vector<std::vector<double>> AcousticEstimator::PosteriorBound(const BoundInput& truth) const {
+  if (!filter() || options_.inertial || truth.positions_m.empty()) return {};
+  const int d = dim();
+  AcousticEstimator model(options_, world_);
+  model.Initialize({truth.t_s.front(), {truth.positions_m.front().front()}});
+  const double r_m2 = options_.range_sigma_m * options_.range_sigma_m;
+  std::vector<std::vector<double>> bound;
+  for (std::size_t k = 0; k < truth.positions_m.size(); ++k) {
+    if (k > 1) {  // the first emission sets b; the filter predicts from the second on
+      const double intervals = std::round((truth.t_s[k] - truth.t_s[k - 1]) / options_.emission_interval_s);
+      model.Predict(std::max(1, static_cast<int>(intervals)));
+    }
+    if (k > 0) {
+      // Linearised at the truth: every predicted path of every microphone is a row (Eq. 5.28
+      // without reweighting: the weights are 1 at the truth with no outliers).
+      model.x_.head(d) = truth.positions_m[k].front().head(d);
+      const Vec3 sender_m = model.Position();
+      const auto n = static_cast<Eigen::Index>(model.x_.size());
+      std::vector<Eigen::RowVectorXd> rows;
+      for (const Vec3& mic_m : mics_m_) {
+        for (const auto& path : PredictPaths(reflectors_, sender_m, mic_m, 0.0, options_.echo_order)) {
+          Eigen::RowVectorXd h = Eigen::RowVectorXd::Zero(n);
+          h.head(d) = path.d_sender.head(d).transpose();
+          h(2 * d) = 1.0;
+          rows.push_back(std::move(h));
+        }
+      }
+      if (!rows.empty()) {
+        Eigen::MatrixXd H(static_cast<Eigen::Index>(rows.size()), n);
+        for (std::size_t r = 0; r < rows.size(); ++r) H.row(static_cast<Eigen::Index>(r)) = rows[r];
+        // Kalman update in Joseph form (P holds variances from ~1e-12, the interval error, to
+        // metres squared: no inverse of P).
+        const Eigen::MatrixXd PHt = model.P_ * H.transpose();
+        Eigen::MatrixXd S = H * PHt;
+        S.diagonal().array() += r_m2;
+        const Eigen::MatrixXd K = S.ldlt().solve(PHt.transpose()).transpose();
+        const Eigen::MatrixXd I_KH = Eigen::MatrixXd::Identity(n, n) - K * H;
+        model.P_ = I_KH * model.P_ * I_KH.transpose() + r_m2 * K * K.transpose();
+        model.P_ = 0.5 * (model.P_ + model.P_.transpose());
+      }
+    }
+    bound.push_back({std::sqrt(model.P_.topLeftCorner(d, d).trace())});
+  }
+  return bound;
+}
+
 StampsByReceiver AcousticEstimator::Stamps(const core::Epoch& epoch, double t_ref_s) const {
   StampsByReceiver out(world_.anchors.size());
   for (const auto& record : epoch.toas) {

@@ -85,6 +85,11 @@ class AcousticEstimator final : public Estimator {
   void Initialize(const Prior& prior) override;
   bool InitializeFromEpoch(const core::Epoch& epoch) override;
   StepOutput Process(const core::Epoch& epoch) override;
+  /// The filters' posterior bound: their covariance recursion along the true track, started at
+  /// the truth with the method's start sigma, with a row for every path the filter predicts
+  /// (direct, echoes to echo_order) at every microphone and emission, each with range_sigma_m, no
+  /// misses, no clutter, no wrong pairs. Empty for the snapshot estimators and with the IMU.
+  [[nodiscard]] std::vector<std::vector<double>> PosteriorBound(const BoundInput& truth) const override;
 
   /// The state [S, V, b, iota] and its covariance (for tests).
   [[nodiscard]] const Eigen::VectorXd& mean() const { return x_; }
