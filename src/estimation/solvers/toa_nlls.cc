@@ -41,11 +41,13 @@ std::pair<Eigen::MatrixXd, int> PseudoInverse(const Eigen::MatrixXd& S) {
 using Normal = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 4, 4>;
 
 // The inverse of a symmetric positive (semi)definite normal matrix, or nullopt when singular:
-// LDLT with diagonal pivoting (the largest remaining diagonal first, as Eigen::LDLT) of the
-// column-normalised matrix, whose smallest pivot bounds its smallest eigenvalue from above up to
-// a small factor for p <= 4. Written out for p <= 4: Eigen's solve against the identity goes
-// through its blocked triangular solver, which cost 3/4 of a closed-form fix
-// (bench/methods/acoustic_bench.cc).
+// LDLT of the column-normalised matrix with symmetric pivoting on the largest diagonal of the
+// remaining Schur complement, so that the last pivot is the smallest and bounds the smallest
+// eigenvalue from above up to a small factor for p <= 4; a pivot below 1e-12 is singular.
+// (Eigen::LDLT pivots on the not yet updated diagonal, all ~1 after the normalisation: the two
+// decide differently only at condition numbers of 1e12 and more, where this one says singular.)
+// Written out for p <= 4: Eigen's solve against the identity goes through its blocked triangular
+// solver, which cost 3/4 of a closed-form fix (bench/methods/acoustic_bench.cc).
 template <int p>
 std::optional<Eigen::Matrix<double, p, p>> InverseIfRegular(const Eigen::Matrix<double, p, p>& A) {
   if (!A.allFinite()) return std::nullopt;
