@@ -20,6 +20,12 @@ double VirtualAnchorCount(std::size_t walls, int order) {
 
 }  // namespace
 
+std::vector<Vec2> GridCorners(const pipeline::RunGrid& grid) {
+  const double hx = 0.5 * (grid.nx - 1) * grid.spacing_m;
+  const double hy = 0.5 * (grid.ny - 1) * grid.spacing_m;
+  return {Vec2::Zero(), Vec2(-hx, -hy), Vec2(hx, -hy), Vec2(-hx, hy), Vec2(hx, hy)};
+}
+
 bool IsPlainName(const std::string& name) { return name.find_first_of(",\"\n\r") == std::string::npos; }
 
 void CheckVirtualAnchorCount(YamlMap& section, const std::string& key, std::size_t walls, int order) {

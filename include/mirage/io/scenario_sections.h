@@ -26,6 +26,9 @@ inline constexpr int kMaxThreads = 1024;
 /// the machine.
 inline constexpr double kMaxVirtualAnchorsPerAnchor = 2e5;
 
+/// The run grid's extreme offsets (the zero offset first): where every shifted run's path lies.
+std::vector<Vec2> GridCorners(const pipeline::RunGrid& grid);
+
 /// True if the name can go into a CSV field unquoted (no commas, quotes or line breaks).
 bool IsPlainName(const std::string& name);
 
