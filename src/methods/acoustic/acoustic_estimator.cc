@@ -238,9 +238,10 @@ bool AcousticEstimator::Follows(const PendingStart& first, const PendingStart& s
 std::vector<std::vector<double>> AcousticEstimator::PosteriorBound(const BoundInput& truth) const {
   if (!filter() || options_.inertial || truth.positions_m.empty()) return {};
   const int d = dim();
-  AcousticEstimator model(options_, world_);
+  AcousticOptions plain = options_;
+  plain.estimator = "ekf";  // every row at its true noise: weights 1
+  AcousticEstimator model(plain, world_);
   model.Initialize({truth.t_s.front(), {truth.positions_m.front().front()}});
-  const double r_m2 = options_.range_sigma_m * options_.range_sigma_m;
   std::vector<std::vector<double>> bound;
   for (std::size_t k = 0; k < truth.positions_m.size(); ++k) {
     if (k > 1) {  // the first emission sets b; the filter predicts from the second on
@@ -248,33 +249,17 @@ std::vector<std::vector<double>> AcousticEstimator::PosteriorBound(const BoundIn
       model.Predict(std::max(1, static_cast<int>(intervals)));
     }
     if (k > 0) {
-      // Linearised at the truth: every predicted path of every microphone is a row (Eq. 5.28
-      // without reweighting: the weights are 1 at the truth with no outliers).
+      // The filter's own update linearised at the truth, every predicted path of every
+      // microphone a row (its stamp at the prediction: the innovations do not enter P).
       model.x_.head(d) = truth.positions_m[k].front().head(d);
       const Vec3 sender_m = model.Position();
-      const auto n = static_cast<Eigen::Index>(model.x_.size());
-      std::vector<Eigen::RowVectorXd> rows;
-      for (const Vec3& mic_m : mics_m_) {
-        for (const auto& path : PredictPaths(reflectors_, sender_m, mic_m, 0.0, options_.echo_order)) {
-          Eigen::RowVectorXd h = Eigen::RowVectorXd::Zero(n);
-          h.head(d) = path.d_sender.head(d).transpose();
-          h(2 * d) = 1.0;
-          rows.push_back(std::move(h));
+      std::vector<Row> rows;
+      for (std::size_t i = 0; i < mics_m_.size(); ++i) {
+        for (const auto& path : PredictPaths(reflectors_, sender_m, mics_m_[i], model.x_(2 * d), options_.echo_order)) {
+          rows.push_back({static_cast<int>(i), path.predicted_m, path});
         }
       }
-      if (!rows.empty()) {
-        Eigen::MatrixXd H(static_cast<Eigen::Index>(rows.size()), n);
-        for (std::size_t r = 0; r < rows.size(); ++r) H.row(static_cast<Eigen::Index>(r)) = rows[r];
-        // Kalman update in Joseph form (P holds variances from ~1e-12, the interval error, to
-        // metres squared: no inverse of P).
-        const Eigen::MatrixXd PHt = model.P_ * H.transpose();
-        Eigen::MatrixXd S = H * PHt;
-        S.diagonal().array() += r_m2;
-        const Eigen::MatrixXd K = S.ldlt().solve(PHt.transpose()).transpose();
-        const Eigen::MatrixXd I_KH = Eigen::MatrixXd::Identity(n, n) - K * H;
-        model.P_ = I_KH * model.P_ * I_KH.transpose() + r_m2 * K * K.transpose();
-        model.P_ = 0.5 * (model.P_ + model.P_.transpose());
-      }
+      if (const auto update = model.UpdateWithRows(rows, std::nullopt, model.x_)) model.P_ = update->P;
     }
     bound.push_back({std::sqrt(model.P_.topLeftCorner(d, d).trace())});
   }
