@@ -2,6 +2,7 @@
 // The ch. 8 example end to end: with the floor echoes the height is pinned (VDOP about 1, median
 // height error of a centimetre), without them the TDOA rows lose it (VDOP several times larger),
 // and a sending time estimated by the vote is absorbed by the height when no echo rows hold it.
+#include <cmath>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -41,6 +42,11 @@ TEST(AcousticHeight, FloorEchoesPinTheHeight) {
     EXPECT_LT(v->overall.height_error->p50, 0.03);
   }
   EXPECT_LT(tdoa.overall.height_error->p50, 0.03);
+  // Sec. 8.3's bound, the criterion: with the floor echoes and the sending time known,
+  // the height RMSE within 1.3 sigma c VDOP (RMS over the fixes), false alarms, misses and the
+  // heavy tail included: the wrong picks among the echoes are caught by the geometry.
+  const double sigma_range_m = 0.044e-3 * 331.3 * std::sqrt(1.0 + 20.0 / 273.15);  // the example's sigma, 20 C
+  EXPECT_LE(known.overall.height_error->rmse, 1.3 * sigma_range_m * known.overall.vdop->rms);
   // Without echoes: TDOA's VDOP several times larger, the estimated t_0 lands in the height.
   EXPECT_GT(tdoa_without.overall.vdop->p50, 4.0 * tdoa.overall.vdop->p50);
   EXPECT_GT(tdoa_without.overall.height_error->p50, 3.0 * tdoa.overall.height_error->p50);

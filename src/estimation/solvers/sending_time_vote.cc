@@ -202,10 +202,9 @@ struct KEntry {
   int pair = 0;
 };
 
-/// The largest set of microphones of one emission whose pairs share K under hypothesis t_s:
-/// per microphone the pair index (or -1). Returns the number of microphones in it.
-int BestKCluster(const std::vector<std::vector<PeakPair>>& mic_pairs, double t_s,
-                 const SendingTimeVoteOptions& options, std::vector<int>* chosen, double* cost) {
+/// The plausible pairs of one emission under hypothesis t_s, sorted by K.
+std::vector<KEntry> KEntries(const std::vector<std::vector<PeakPair>>& mic_pairs, double t_s,
+                             const SendingTimeVoteOptions& options) {
   const double c2 = options.speed_mps * options.speed_mps;
   // Unequal microphone heights spread K by 4 h_s dh / c^2.
   // With the microphones' heights known, K / h_m = 4 h_s / c^2 is shared exactly instead.
@@ -226,31 +225,49 @@ int BestKCluster(const std::vector<std::vector<PeakPair>>& mic_pairs, double t_s
     }
   }
   std::sort(entries.begin(), entries.end(), [](const KEntry& a, const KEntry& b) { return a.k_s2 < b.k_s2; });
+  return entries;
+}
+
+/// The microphones whose pairs share K with entry `centre` (within its tolerance): per
+/// microphone its pair nearest the centre (-1 if none) in *members, their number, and in *cost
+/// their truncated squared residuals (MSAC-like).
+int ClusterAround(const std::vector<KEntry>& entries, const KEntry& centre, std::vector<int>* members,
+                  std::vector<double>* distance, double* cost) {
+  std::fill(members->begin(), members->end(), -1);
+  std::fill(distance->begin(), distance->end(), std::numeric_limits<double>::infinity());
+  int count = 0;
+  const auto lo = std::lower_bound(entries.begin(), entries.end(), centre.k_s2 - centre.tol_s2,
+                                   [](const KEntry& a, double v) { return a.k_s2 < v; });
+  for (auto it = lo; it != entries.end() && it->k_s2 <= centre.k_s2 + centre.tol_s2; ++it) {
+    const auto m = static_cast<std::size_t>(it->mic);
+    const double d = std::abs(it->k_s2 - centre.k_s2);
+    if ((*members)[m] < 0) ++count;
+    if (d < (*distance)[m]) {
+      (*distance)[m] = d;
+      (*members)[m] = it->pair;
+    }
+  }
+  *cost = 0.0;
+  for (std::size_t m = 0; m < members->size(); ++m) {
+    if ((*members)[m] >= 0) *cost += std::pow((*distance)[m] / centre.tol_s2, 2);
+  }
+  return count;
+}
+
+/// The largest set of microphones of one emission whose pairs share K under hypothesis t_s:
+/// per microphone the pair index (or -1). Returns the number of microphones in it.
+int BestKCluster(const std::vector<std::vector<PeakPair>>& mic_pairs, double t_s,
+                 const SendingTimeVoteOptions& options, std::vector<int>* chosen, double* cost) {
+  const std::vector<KEntry> entries = KEntries(mic_pairs, t_s, options);
   chosen->assign(mic_pairs.size(), -1);
   int best_count = 0;
   *cost = 0.0;
-  std::vector<double> best_distance(mic_pairs.size());
+  std::vector<double> distance(mic_pairs.size());
   std::vector<int> members(mic_pairs.size());
   for (const KEntry& centre : entries) {
-    std::fill(members.begin(), members.end(), -1);
-    std::fill(best_distance.begin(), best_distance.end(), std::numeric_limits<double>::infinity());
-    int count = 0;
     double centre_cost = 0.0;
-    const auto lo = std::lower_bound(entries.begin(), entries.end(), centre.k_s2 - centre.tol_s2,
-                                     [](const KEntry& a, double v) { return a.k_s2 < v; });
-    for (auto it = lo; it != entries.end() && it->k_s2 <= centre.k_s2 + centre.tol_s2; ++it) {
-      const auto m = static_cast<std::size_t>(it->mic);
-      const double distance = std::abs(it->k_s2 - centre.k_s2);
-      if (members[m] < 0) ++count;
-      if (distance < best_distance[m]) {  // a microphone's pair nearest the centre
-        best_distance[m] = distance;
-        members[m] = it->pair;
-      }
-    }
-    for (std::size_t m = 0; m < members.size(); ++m) {
-      if (members[m] >= 0) centre_cost += std::pow(best_distance[m] / centre.tol_s2, 2);
-    }
-    // Most microphones; among equals the tightest (MSAC-like truncated squared residuals).
+    const int count = ClusterAround(entries, centre, &members, &distance, &centre_cost);
+    // Most microphones; among equals the tightest.
     if (count > best_count || (count == best_count && centre_cost < *cost)) {
       best_count = count;
       *cost = centre_cost;
@@ -258,6 +275,38 @@ int BestKCluster(const std::vector<std::vector<PeakPair>>& mic_pairs, double t_s
     }
   }
   return best_count;
+}
+
+/// Every distinct K cluster of at least three microphones of one emission under t_s, most
+/// microphones first, among equals the tightest.
+std::vector<std::vector<int>> KClusters(const std::vector<std::vector<PeakPair>>& mic_pairs, double t_s,
+                                        const SendingTimeVoteOptions& options) {
+  const std::vector<KEntry> entries = KEntries(mic_pairs, t_s, options);
+  struct Ranked {
+    int count;
+    double cost;
+    std::vector<int> members;
+  };
+  std::vector<Ranked> clusters;
+  std::vector<double> distance(mic_pairs.size());
+  std::vector<int> members(mic_pairs.size());
+  for (const KEntry& centre : entries) {
+    double cost = 0.0;
+    const int count = ClusterAround(entries, centre, &members, &distance, &cost);
+    if (count < 3) continue;
+    const auto same = std::find_if(clusters.begin(), clusters.end(), [&](const Ranked& r) { return r.members == members; });
+    if (same == clusters.end()) {
+      clusters.push_back({count, cost, members});
+    } else {
+      same->cost = std::min(same->cost, cost);
+    }
+  }
+  std::stable_sort(clusters.begin(), clusters.end(), [](const Ranked& a, const Ranked& b) {
+    return a.count > b.count || (a.count == b.count && a.cost < b.cost);
+  });
+  std::vector<std::vector<int>> out;
+  for (auto& r : clusters) out.push_back(std::move(r.members));
+  return out;
 }
 
 /// Weighted least squares of t_0 and one K_e per emission from the selected pairs:
@@ -403,19 +452,30 @@ PairTable PairsOfEmissions(std::span<const EmissionStamps> emissions, const Send
   return pairs;
 }
 
-/// The chosen stamps' indices from the selected pairs.
-std::vector<std::vector<MicStampChoice>> ChosenStamps(const PairTable& pairs, const Selection& selection) {
-  std::vector<std::vector<MicStampChoice>> chosen(pairs.size());
-  for (std::size_t e = 0; e < pairs.size(); ++e) {
-    chosen[e].resize(pairs[e].size());
-    for (std::size_t m = 0; m < pairs[e].size(); ++m) {
-      const int p = selection[e][m];
-      if (p < 0) continue;
-      const PeakPair& pair = pairs[e][m][static_cast<std::size_t>(p)];
-      chosen[e][m] = {pair.los_index, pair.ground_index};
-    }
+/// One emission's chosen stamps' indices from its selected pairs.
+std::vector<MicStampChoice> ChosenStamps(const std::vector<std::vector<PeakPair>>& mic_pairs,
+                                         const std::vector<int>& selected) {
+  std::vector<MicStampChoice> chosen(mic_pairs.size());
+  for (std::size_t m = 0; m < mic_pairs.size(); ++m) {
+    const int p = selected[m];
+    if (p < 0) continue;
+    const PeakPair& pair = mic_pairs[m][static_cast<std::size_t>(p)];
+    chosen[m] = {pair.los_index, pair.ground_index};
   }
   return chosen;
+}
+
+/// Every emission's chosen stamps; and the last emission's other K clusters at the vote's t_0.
+void FillChosen(const PairTable& pairs, const Selection& selection, const SendingTimeVoteOptions& options,
+                SendingTimeVote* vote) {
+  vote->chosen.clear();
+  for (std::size_t e = 0; e < pairs.size(); ++e) vote->chosen.push_back(ChosenStamps(pairs[e], selection[e]));
+  vote->alternatives.clear();
+  if (pairs.empty() || options.method != SendingTimeVoteMethod::kConsensus) return;
+  for (const auto& members : KClusters(pairs.back(), vote->t0_s, options)) {
+    if (members == selection.back()) continue;
+    vote->alternatives.push_back(ChosenStamps(pairs.back(), members));
+  }
 }
 
 }  // namespace
@@ -460,7 +520,7 @@ std::optional<SendingTimeVote> VoteSendingTime(std::span<const EmissionStamps> e
   } else {
     Consensus(std::move(candidates), pairs, options, &vote, &selection);
   }
-  vote.chosen = ChosenStamps(pairs, selection);
+  FillChosen(pairs, selection, options, &vote);
   return vote;
 }
 
@@ -474,7 +534,7 @@ std::optional<SendingTimeVote> VoteSendingTimeAt(std::span<const EmissionStamps>
   Selection selection;
   const Score score = RefineHypothesis(t0_hypothesis_s, pairs, options, &vote, &selection);
   if (score.inliers == 0) return std::nullopt;
-  vote.chosen = ChosenStamps(pairs, selection);
+  FillChosen(pairs, selection, options, &vote);
   return vote;
 }
 

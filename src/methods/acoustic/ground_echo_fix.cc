@@ -110,6 +110,178 @@ std::optional<estimation::SolverFix> GroundEchoFixer::Solve(const std::vector<Ve
   return std::nullopt;
 }
 
+std::optional<GroundEchoFixer::SelectionFit> GroundEchoFixer::FitSelection(
+    const std::vector<estimation::MicStampChoice>& chosen, const std::vector<std::vector<double>>& stamps_s,
+    const std::optional<double>& t0_s) const {
+  // The rows: each chosen microphone's LOS stamp and, with echoes, its floor-echo stamp (the
+  // microphone mirrored in the floor), as ranges from t_0 or pseudo-ranges without it.
+  std::vector<Vec3> receivers_m;
+  std::vector<double> values_m;
+  std::vector<int> row_mic;  // per row: its microphone
+  for (std::size_t m = 0; m < mics_m_.size(); ++m) {
+    const auto& c = chosen[m];
+    if (c.los_index < 0) continue;
+    receivers_m.push_back(mics_m_[m]);
+    values_m.push_back(c_mps_ * (stamps_s[m][static_cast<std::size_t>(c.los_index)] - t0_s.value_or(0.0)));
+    row_mic.push_back(static_cast<int>(m));
+    if (options_.echoes && c.ground_index >= 0) {
+      receivers_m.emplace_back(mics_m_[m].x(), mics_m_[m].y(), 2.0 * floor_z_m_ - mics_m_[m].z());
+      values_m.push_back(c_mps_ * (stamps_s[m][static_cast<std::size_t>(c.ground_index)] - t0_s.value_or(0.0)));
+      row_mic.push_back(static_cast<int>(m));
+    }
+  }
+  if (receivers_m.empty()) return std::nullopt;
+  const bool offset_unknown = !t0_s.has_value();
+  const std::size_t unknowns = offset_unknown ? 4 : 3;
+  // The fallback start: below the chosen microphones' centroid, halfway to the floor.
+  Vec3 centroid_m = Vec3::Zero();
+  int chosen_mics = 0;
+  for (std::size_t m = 0; m < mics_m_.size(); ++m) {
+    if (chosen[m].los_index < 0) continue;
+    centroid_m += mics_m_[m];
+    ++chosen_mics;
+  }
+  centroid_m /= static_cast<double>(chosen_mics);
+  centroid_m.z() = floor_z_m_ + 0.5 * (centroid_m.z() - floor_z_m_);
+
+  // The fix on the rows of the microphones in `use`, from start_m, else below the centroid.
+  std::vector<Vec3> rx_m;
+  std::vector<double> z_m;
+  const auto fit = [&](const std::vector<bool>& use,
+                       const std::optional<Vec3>& start_m) -> std::optional<estimation::SolverFix> {
+    rx_m.clear();
+    z_m.clear();
+    for (std::size_t r = 0; r < receivers_m.size(); ++r) {
+      if (!use[static_cast<std::size_t>(row_mic[r])]) continue;
+      rx_m.push_back(receivers_m[r]);
+      z_m.push_back(values_m[r]);
+    }
+    if (rx_m.size() < unknowns) return std::nullopt;
+    auto f = Solve(rx_m, z_m, offset_unknown, start_m, centroid_m);
+    if (!f) return std::nullopt;
+    // Coplanar microphones (LOS rows only) fit the sender and its mirror image in their plane
+    // alike: a fix above the ceiling, or higher than any sender, is that mirror; start again from
+    // below the microphones.
+    const auto implausible = [&](const Vec3& p) {
+      return (ceiling_z_m_ && p.z() > *ceiling_z_m_) || p.z() - floor_z_m_ > options_.max_sender_height_m;
+    };
+    if (implausible(f->position_m)) {
+      Vec3 mirrored_m = f->position_m;
+      mirrored_m.z() = 2.0 * mic_plane_z_m_ - f->position_m.z();
+      f = Solve(rx_m, z_m, offset_unknown, mirrored_m, centroid_m);
+      if (!f || implausible(f->position_m)) return std::nullopt;
+    }
+    return f;
+  };
+  // Each microphone's largest row residual at a fix (m); an offset solved on a subset applies
+  // to every row (it is the sender's).
+  const auto mic_residuals_m = [&](const estimation::SolverFix& f) {
+    std::vector<double> worst_m(mics_m_.size(), 0.0);
+    for (std::size_t r = 0; r < receivers_m.size(); ++r) {
+      auto& w = worst_m[static_cast<std::size_t>(row_mic[r])];
+      w = std::max(w, std::abs(values_m[r] - (f.position_m - receivers_m[r]).norm() - f.offset_m));
+    }
+    return worst_m;
+  };
+  const double gate_m = 3.0 * sigma_m_;
+  const auto within = [&](const estimation::SolverFix& f) {
+    const auto w = mic_residuals_m(f);
+    std::vector<bool> in(w.size(), false);
+    for (const int m : row_mic) in[static_cast<std::size_t>(m)] = w[static_cast<std::size_t>(m)] <= gate_m;
+    return in;
+  };
+  std::vector<bool> used(mics_m_.size(), false);
+  for (const int m : row_mic) used[static_cast<std::size_t>(m)] = true;
+  std::optional<estimation::SolverFix> fix = fit(used, last_m_);
+  if (!fix || within(*fix) != used) {
+    // A stamp off by more than 3 sigma (a wrong pick, a heavy-tail stamp) pulls the fit of all
+    // rows towards it, so the largest residual need not be its own (masking): dropping
+    // microphones one at a time from that fit can end on a few consistent but wrong ones. The
+    // largest consensus instead (Fischler & Bolles, the thesis's [84]): every smallest set of
+    // microphones with rows for the unknowns is solved, the microphones within 3 sigma of its
+    // fix are its consensus, and the largest one (ties: the smaller sum of squared residuals)
+    // is refitted and checked once more against all microphones. Up to C(12, 4) = 495 solves
+    // for twelve microphones without echoes, only at emissions whose full fit fails the test.
+    std::vector<int> mics;
+    std::vector<std::size_t> rows_per_mic;
+    for (std::size_t m = 0; m < mics_m_.size(); ++m) {
+      const auto rows = static_cast<std::size_t>(std::count(row_mic.begin(), row_mic.end(), static_cast<int>(m)));
+      if (rows == 0) continue;
+      mics.push_back(static_cast<int>(m));
+      rows_per_mic.push_back(rows);
+    }
+    std::sort(rows_per_mic.rbegin(), rows_per_mic.rend());
+    std::size_t k = 0;
+    for (std::size_t covered = 0; k < rows_per_mic.size() && covered < unknowns; ++k) covered += rows_per_mic[k];
+    std::vector<bool> pick(mics.size(), false);
+    std::fill(pick.begin(), pick.begin() + static_cast<std::ptrdiff_t>(k), true);
+    std::vector<bool> best_in;
+    std::size_t best_count = 0;
+    double best_ss = 0.0;
+    const std::optional<Vec3> start_m = fix ? std::optional<Vec3>(fix->position_m) : last_m_;
+    do {
+      std::vector<bool> subset(mics_m_.size(), false);
+      for (std::size_t i = 0; i < mics.size(); ++i) subset[static_cast<std::size_t>(mics[i])] = pick[i];
+      const auto f = fit(subset, start_m);
+      if (!f) continue;
+      const auto w = mic_residuals_m(*f);
+      const auto in = within(*f);
+      std::size_t count = 0;
+      double ss = 0.0;
+      for (std::size_t m = 0; m < in.size(); ++m) {
+        if (in[m]) ++count, ss += w[m] * w[m];
+      }
+      if (count > best_count || (count == best_count && count > 0 && ss < best_ss)) {
+        best_in = in;
+        best_count = count;
+        best_ss = ss;
+      }
+    } while (std::prev_permutation(pick.begin(), pick.end()));
+    // A consensus of the smallest set alone fits exactly and verifies nothing: at least one
+    // microphone beyond it must agree.
+    if (best_count <= k) return std::nullopt;
+    used = best_in;
+    fix = fit(used, start_m);
+    if (fix) {
+      // The consensus fit may admit a microphone the smallest set's noisier fix had left out.
+      const auto again = within(*fix);
+      if (std::count(again.begin(), again.end(), true) > std::count(used.begin(), used.end(), true)) {
+        used = again;
+        fix = fit(used, fix->position_m);
+      }
+    }
+  }
+  // Then, within the consensus, the microphone with the largest residual beyond 3 sigma is left
+  // out (both its rows: a wrong LOS pick makes its echo wrong too) and the fix repeated, while
+  // rows for the unknowns remain.
+  for (;;) {
+    if (!fix) return std::nullopt;
+    const auto w = mic_residuals_m(*fix);
+    int worst = -1;
+    double worst_m = gate_m;
+    for (std::size_t m = 0; m < w.size(); ++m) {
+      if (used[m] && w[m] > worst_m) {
+        worst_m = w[m];
+        worst = static_cast<int>(m);
+      }
+    }
+    if (worst < 0) break;
+    used[static_cast<std::size_t>(worst)] = false;
+    fix = fit(used, fix->position_m);
+  }
+  SelectionFit out{*fix, 0, 0.0, 0, 0};
+  for (std::size_t r = 0; r < receivers_m.size(); ++r) {
+    const auto m = static_cast<std::size_t>(row_mic[r]);
+    if (!used[m]) continue;
+    const bool is_echo = r > 0 && row_mic[r - 1] == row_mic[r];
+    (is_echo ? out.echo_rows : out.los_rows) += 1;
+    const double e_m = values_m[r] - (fix->position_m - receivers_m[r]).norm() - fix->offset_m;
+    out.sum_sq_m2 += e_m * e_m;
+  }
+  out.mics = static_cast<int>(std::count(used.begin(), used.end(), true));
+  return out;
+}
+
 GroundEchoFix GroundEchoFixer::Process(const core::Epoch& epoch) {
   GroundEchoFix out;
   Emission emission;
@@ -168,83 +340,30 @@ GroundEchoFix GroundEchoFixer::Process(const core::Epoch& epoch) {
     t0_s = *known_emission_s - epoch.t_s;
   }
 
-  // 3. The rows: this emission's chosen LOS and floor-echo stamps.
+  // 3-4. The fix of the vote's K cluster, and of its other clusters: a wall echo and its floor
+  //      echo share K like the LOS and the floor echo, and the vote's tie-break between clusters
+  //      of as many microphones (the spread of K) is weak; the geometry decides (Fischler &
+  //      Bolles's verification step): the fix keeping the most microphones within 3 sigma wins,
+  //      then the smaller sum of squared residuals. With a known t_0 every row is an absolute
+  //      range, independent of the selection, so any cluster is verified on its own and all are
+  //      tried. With t_0 from the vote (derived from the chosen cluster) or solved with the fix
+  //      (pseudo-ranges), a smaller cluster fits its own geometry too easily to overrule the
+  //      vote's count: only the clusters as large as the chosen one are tried.
+  const bool absolute_ranges = options_.sending_time == "known";
   const auto& stamps = voted.back().mic_stamps_s;
-  std::vector<Vec3> receivers_m;
-  std::vector<double> values_m;
-  std::vector<Vec3> row_mics_m;  // the microphones with rows
-  std::vector<int> row_mic;      // per row: its index into row_mics_m
-  for (std::size_t m = 0; m < mics_m_.size(); ++m) {
-    const auto& c = chosen[m];
-    if (c.los_index < 0) continue;
-    const double t_los_s = stamps[m][static_cast<std::size_t>(c.los_index)];
-    receivers_m.push_back(mics_m_[m]);
-    values_m.push_back(c_mps_ * (t_los_s - t0_s.value_or(0.0)));
-    row_mic.push_back(static_cast<int>(row_mics_m.size()));
-    row_mics_m.push_back(mics_m_[m]);
-    if (options_.echoes && c.ground_index >= 0) {
-      const double t_echo_s = stamps[m][static_cast<std::size_t>(c.ground_index)];
-      receivers_m.emplace_back(mics_m_[m].x(), mics_m_[m].y(), 2.0 * floor_z_m_ - mics_m_[m].z());
-      values_m.push_back(c_mps_ * (t_echo_s - t0_s.value_or(0.0)));
-      row_mic.push_back(row_mic.back());
+  std::optional<SelectionFit> best = FitSelection(chosen, stamps, t0_s);
+  for (const auto& alternative : vote->alternatives) {
+    const auto mics = std::count_if(alternative.begin(), alternative.end(), [](const auto& c) { return c.los_index >= 0; });
+    // Most microphones first: none after this one can win.
+    if ((!absolute_ranges && mics < heard) || (best && mics < best->mics)) break;
+    auto fit = FitSelection(alternative, stamps, t0_s);
+    if (fit && (!best || fit->mics > best->mics || (fit->mics == best->mics && fit->sum_sq_m2 < best->sum_sq_m2))) {
+      best = std::move(fit);
     }
   }
+  if (!best) return out;
+  const estimation::SolverFix* fix = &best->fix;
   const bool offset_unknown = !t0_s.has_value();
-  const std::size_t unknowns = offset_unknown ? 4 : 3;
-
-  // 4. The fix from the last one, else from below the microphones' centroid; then the microphone
-  //    with the largest residual beyond 3 sigma is left out (both its rows: a wrong LOS pick
-  //    makes its echo wrong too) and the fix repeated, while more rows than unknowns remain.
-  Vec3 centroid_m = Vec3::Zero();
-  for (const auto& m : row_mics_m) centroid_m += m;
-  centroid_m /= static_cast<double>(row_mics_m.size());
-  centroid_m.z() = floor_z_m_ + 0.5 * (centroid_m.z() - floor_z_m_);
-  std::vector<bool> used(row_mics_m.size(), true);
-  std::optional<estimation::SolverFix> fix;
-  std::vector<Vec3> rx_m;
-  std::vector<double> z_m;
-  std::vector<int> rx_mic;
-  for (;;) {
-    rx_m.clear();
-    z_m.clear();
-    rx_mic.clear();
-    for (std::size_t r = 0; r < receivers_m.size(); ++r) {
-      if (!used[static_cast<std::size_t>(row_mic[r])]) continue;
-      rx_m.push_back(receivers_m[r]);
-      z_m.push_back(values_m[r]);
-      rx_mic.push_back(row_mic[r]);
-    }
-    if (rx_m.size() < unknowns) return out;
-    fix = Solve(rx_m, z_m, offset_unknown, fix ? std::optional<Vec3>(fix->position_m) : last_m_, centroid_m);
-    if (!fix) return out;
-    // Coplanar microphones (LOS rows only) fit the sender and its mirror image in their plane
-    // alike: a fix above the ceiling, or higher than any sender, is that mirror; start again from
-    // below the microphones.
-    const auto implausible = [&](const Vec3& p) {
-      return (ceiling_z_m_ && p.z() > *ceiling_z_m_) || p.z() - floor_z_m_ > options_.max_sender_height_m;
-    };
-    if (implausible(fix->position_m)) {
-      Vec3 mirrored_m = fix->position_m;
-      mirrored_m.z() = 2.0 * mic_plane_z_m_ - fix->position_m.z();
-      fix = Solve(rx_m, z_m, offset_unknown, mirrored_m, centroid_m);
-      if (!fix || implausible(fix->position_m)) return out;
-    }
-    int worst = -1;
-    double worst_m = 3.0 * sigma_m_;
-    for (std::size_t r = 0; r < rx_m.size(); ++r) {
-      const double residual_m = std::abs(z_m[r] - (fix->position_m - rx_m[r]).norm() - fix->offset_m);
-      if (residual_m > worst_m) {
-        worst_m = residual_m;
-        worst = rx_mic[r];
-      }
-    }
-    if (worst < 0) break;
-    used[static_cast<std::size_t>(worst)] = false;
-  }
-  for (std::size_t r = 0; r < rx_mic.size(); ++r) {
-    const bool is_echo = r > 0 && rx_mic[r] == rx_mic[r - 1];
-    (is_echo ? out.echo_rows : out.los_rows) += 1;
-  }
   // The DOPs of the rows used (Eq. 8.10-8.12): the solver's covariance is (H^T R^-1 H)^-1 at the
   // fix, the CRLB of the range model (t_0 given) or of the pseudo-range model (t_0 unknown: the
   // position block of [x, y, z, b]), each row with sigma.
@@ -254,6 +373,8 @@ GroundEchoFix GroundEchoFixer::Process(const core::Epoch& epoch) {
   if (!std::isfinite(hdop) || !std::isfinite(vdop)) return out;
 
   out.found = true;
+  out.los_rows = best->los_rows;
+  out.echo_rows = best->echo_rows;
   out.position_m = fix->position_m;
   out.covariance_m2 = crlb_m2;
   out.hdop = hdop;

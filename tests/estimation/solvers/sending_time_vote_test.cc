@@ -336,6 +336,39 @@ TEST(VoteSendingTime, FirstArrivalRuleKeepsTheLosAmongWallImagePairs) {
   }
 }
 
+TEST(VoteSendingTimeAt, ReturnsTheOtherKClustersAsAlternativesLargestFirst) {
+  // Two LOS / floor-echo families with their own K (senders at 1.3 m and 0.6 m, one t_0) at
+  // every microphone: the stamps support both equally, one is chosen, the other must be among
+  // the alternatives for the position fit to decide between them.
+  const std::vector<Vec3> mics = NineMics(true);
+  const double t0_s = 0.02;
+  const Vec3 sender(5.0, 4.0, 1.3);
+  const Vec3 image(5.5, 4.5, 0.6);
+  EmissionStamps e;
+  for (const Vec3& mic : mics) {
+    const auto arrival = [&](const Vec3& p) { return t0_s + (p - mic).norm() / kC; };
+    const auto floor = [](const Vec3& p) { return Vec3(p.x(), p.y(), -p.z()); };
+    e.mic_stamps_s.push_back({arrival(sender), arrival(floor(sender)), arrival(image), arrival(floor(image))});
+  }
+  const std::vector<EmissionStamps> emissions{e};
+  const auto vote = VoteSendingTimeAt(emissions, t0_s, SendingTimeVoteOptions{});
+  ASSERT_TRUE(vote.has_value());
+  const auto family = [](const std::vector<MicStampChoice>& c, int los, int ground) {
+    return std::all_of(c.begin(), c.end(), [&](const MicStampChoice& m) { return m.los_index == los && m.ground_index == ground; });
+  };
+  ASSERT_FALSE(vote->alternatives.empty());
+  const auto& chosen = vote->chosen.back();
+  const auto& first = vote->alternatives.front();
+  EXPECT_TRUE((family(chosen, 0, 1) && family(first, 2, 3)) || (family(chosen, 2, 3) && family(first, 0, 1)));
+  const auto heard = [](const std::vector<MicStampChoice>& c) {
+    return std::count_if(c.begin(), c.end(), [](const MicStampChoice& m) { return m.los_index >= 0; });
+  };
+  for (std::size_t k = 1; k < vote->alternatives.size(); ++k) {
+    EXPECT_GE(heard(vote->alternatives[k - 1]), heard(vote->alternatives[k]));
+    EXPECT_GE(heard(vote->alternatives[k]), 3);
+  }
+}
+
 TEST(VoteSendingTime, RefusesMoreCombinationsThanAllowedAndInvalidOptions) {
   core::Rng rng(14);
   SimOptions sim;

@@ -169,6 +169,11 @@ struct SendingTimeVote {
   /// [emission][mic]: the chosen (L, r) pair: the most-voted in the pile (kThesisPile) or the
   /// inlier pair (kConsensus); -1 where none.
   std::vector<std::vector<MicStampChoice>> chosen;
+  /// kConsensus: the last emission's other K clusters of at least three microphones at t0_s,
+  /// most microphones first, among equals the tightest. Each is as consistent in t_0 and K as
+  /// `chosen` (a wall echo and its floor echo share K like the LOS and the floor echo, see
+  /// los_is_first_arrival): the stamps alone cannot rank them, a position fit can.
+  std::vector<std::vector<MicStampChoice>> alternatives;
 };
 
 /// Eq. 8.77-8.79 and the thesis's steps 1-3: every pair of microphones i < j of an emission, every

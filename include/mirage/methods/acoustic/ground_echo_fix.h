@@ -29,15 +29,19 @@
 //     R_TD = D R D^T: Shin & Sung, Sec. 8.3; the thesis's "TDOA" rows).
 //  4. The fix: Levenberg-Marquardt (Eq. 8.80-8.82; the thesis uses gradient descent and Gauss-
 //     Newton) on the LOS rows |S - M_i| = c (T_L,i - t_0) and, with echoes, the floor-echo rows
-//     |S - M'_i| = c (T_r,i - t_0), from the last fix, else below the microphones' centroid. The
-//     microphone with the largest residual beyond 3 sigma is left out (both its rows) and the fix
-//     repeated while rows remain for the unknowns. With LOS rows only, coplanar microphones fit
-//     the sender's mirror image in their plane as well: a fix above the ceiling restarts from
-//     that mirror.
+//     |S - M'_i| = c (T_r,i - t_0), from the last fix, else below the microphones' centroid.
+//     When a row lies beyond 3 sigma, the largest consensus of microphones (every smallest set
+//     with rows for the unknowns solved, the microphones within 3 sigma of its fix counted;
+//     Fischler & Bolles) is refitted, then the worst microphone beyond 3 sigma left out while
+//     rows remain; a consensus no larger than the smallest set has no fix. The vote's other K
+//     clusters are fitted too (all with a known t_0, whose rows are absolute ranges; only those
+//     as large as the chosen one otherwise) and the fix keeping the most microphones wins. With
+//     LOS rows only, coplanar microphones fit the sender's mirror image in their plane as well:
+//     a fix above the ceiling restarts from that mirror.
 //  5. Its CRLB and DOPs at the fix: (H^T R^-1 H)^-1 of the rows used, the range model (t_0 given)
 //     or the pseudo-range model (t_0 unknown); eval/dop.h computes the same from the geometry.
 // An emission without three microphones in the vote's cluster, or with fewer rows than unknowns,
-// or a degenerate or unconverged solve, has no fix. Left open: second-order echoes (floor-
+// or an unverified consensus, or a degenerate or unconverged solve, has no fix. Left open: second-order echoes (floor-
 // ceiling, wall-floor) form further consistent clusters that the first-arrival rule does not
 // remove (docs/results/acoustic.md: order 2 in the example's last grid line).
 #pragma once
@@ -137,6 +141,21 @@ class GroundEchoFixer {
                                                            const std::vector<double>& values_m, bool offset_unknown,
                                                            const std::optional<Vec3>& start_m,
                                                            const Vec3& fallback_start_m) const;
+
+  /// A selection's fix: the microphones kept within 3 sigma, their sum of squared residuals.
+  struct SelectionFit {
+    estimation::SolverFix fix;
+    int mics = 0;
+    double sum_sq_m2 = 0.0;
+    int los_rows = 0;
+    int echo_rows = 0;
+  };
+  /// The fix of one emission's selection (per microphone its LOS and floor-echo stamp, indices
+  /// into stamps_s): the largest consensus of microphones within 3 sigma; std::nullopt when no
+  /// rows for the unknowns remain or no solve converges.
+  [[nodiscard]] std::optional<SelectionFit> FitSelection(const std::vector<estimation::MicStampChoice>& chosen,
+                                                         const std::vector<std::vector<double>>& stamps_s,
+                                                         const std::optional<double>& t0_s) const;
 
   std::deque<Emission> window_;
   std::optional<Track> track_;
