@@ -131,6 +131,7 @@ void AcousticEstimator::Start(const Vec3& position_m, double position_sigma_m,
   started_ = true;
   have_emission_ = false;
   first_search_s_.reset();
+  search_whole_plan_ = false;
 }
 
 void AcousticEstimator::Initialize(const Prior& prior) {
@@ -390,6 +391,31 @@ std::vector<AcousticEstimator::Row> AcousticEstimator::AssociateRows(const Stamp
   return rows;
 }
 
+bool AcousticEstimator::Outside(const Eigen::VectorXd& x, const Eigen::MatrixXd& P) const {
+  const geometry::FloorPlan& plan = world_.floor_plan;
+  if (plan.walls().empty()) return false;
+  const int d = dim();
+  const Vec3 p = PositionOf(x);
+  // 3 sigma of the position in every direction: the nearest point of that box inside the plan
+  // keeps the track (a track near a wall, a noisy update).
+  const Eigen::VectorXd sigma_m = P.diagonal().head(d).cwiseSqrt();
+  const auto [lo, hi] = plan.Bounds();
+  const Vec2 nearest = p.head<2>().cwiseMax(lo - 3.0 * sigma_m.head<2>()).cwiseMin(hi + 3.0 * sigma_m.head<2>());
+  if ((nearest - p.head<2>()).norm() > 0.0) return true;
+  bool enclosed = plan.Encloses(p.head<2>());
+  for (int dx = -1; dx <= 1 && !enclosed; ++dx) {
+    for (int dy = -1; dy <= 1 && !enclosed; ++dy) {
+      enclosed = plan.Encloses(p.head<2>() + 3.0 * Vec2(dx * sigma_m(0), dy * sigma_m(1)));
+    }
+  }
+  if (!enclosed) return true;
+  if (d == 3) {
+    const double sz = 3.0 * sigma_m(2);
+    return p.z() < plan.floor_z_m() - sz || p.z() > plan.ceiling_z_m() + sz;
+  }
+  return false;
+}
+
 std::vector<AcousticEstimator::Row> AcousticEstimator::FirstArrivalRows(const StampsByReceiver& stamps,
                                                                          const Eigen::VectorXd& x_lin) const {
   const int d = dim();
@@ -447,10 +473,12 @@ StepOutput AcousticEstimator::Filter(const core::Epoch& epoch) {
     // every echo is a direct path of some other position, and such a search finds those as
     // readily: the thesis's start stands (the prior mean, the emission the earliest stamps imply).
     if (!first_search_s_) first_search_s_ = epoch.t_s;
-    const StartOutcome start = reflectors_.empty()
-                                   ? StartOutcome::kNoFix
-                                   : StartFromStamps(epoch, SearchRegion(true, epoch.t_s - *first_search_s_));
-    if (start != StartOutcome::kNoFix) {
+    const StartOutcome start =
+        reflectors_.empty() ? StartOutcome::kNoFix
+                            : StartFromStamps(epoch, search_whole_plan_ ? SearchRegion(false)
+                                                                        : SearchRegion(true, epoch.t_s - *first_search_s_));
+    if (start != StartOutcome::kNoFix || search_whole_plan_) {
+      // A lost track waits for a start from the stamps: its state is known to be wrong.
       // Started from the fixes, or waiting for the next emission's to confirm: then the prior
       // stands, which is no fix of this emission.
       out.expected = static_cast<int>(world_.anchors.size());
@@ -551,6 +579,16 @@ StepOutput AcousticEstimator::Filter(const core::Epoch& epoch) {
   }
   out.expected = static_cast<int>(world_.anchors.size());
   out.agents.push_back(Estimate());
+  // The track-loss test: a sender is inside the floor plan, between its floor and ceiling; an
+  // estimate outside it by more than 3 sigma has lost the sender (a track that paired wrong
+  // stamps and ran away with them). The start then searches the whole plan again.
+  if (options_.restart_lost_track && passes > 1 && Outside(x_, P_)) {
+    have_emission_ = false;
+    search_whole_plan_ = true;
+    pending_start_.reset();
+    first_search_s_.reset();
+    out.relocalized = true;
+  }
   return out;
 }
 

@@ -35,7 +35,9 @@
 // with the association redone at each iterate: pass 0 takes each microphone's earliest stamp as
 // its direct path at the prediction, passes 1-3 pair all stamps with all paths at the last
 // estimate. The passes run twice, after pass 0 and directly from the prediction, and the outcome
-// whose estimate explains more stamps within 3 sigma is kept (docs/methods/acoustic.md).
+// whose estimate explains more stamps within 3 sigma is kept (docs/methods/acoustic.md). A
+// track whose position leaves the floor plan by more than 3 sigma has lost the sender and starts
+// again from all the stamps over the whole plan (restart_lost_track).
 //
 // Floor echoes ("ground_echo", mode 3d): per emission the ch. 8 fix of ground_echo_fix.h, the
 // line of sight and the floor echo of each microphone, with its HDOP and VDOP.
@@ -143,6 +145,9 @@ class AcousticEstimator final : public Estimator {
   /// Association passes after the first (direct paths at the prediction) when echoes are
   /// predicted; a pass whose pairs equal the last one's ends the iteration early.
   static constexpr int kAssociationPasses = 3;
+  /// The state's position lies outside the floor plan (or below its floor, above its ceiling)
+  /// by more than 3 sigma per axis: the track has lost the sender.
+  [[nodiscard]] bool Outside(const Eigen::VectorXd& x, const Eigen::MatrixXd& P) const;
   /// The rows of one association pass at the linearisation point x_lin with covariance P_lin.
   [[nodiscard]] std::vector<Row> AssociateRows(const StampsByReceiver& stamps, const Eigen::VectorXd& x_lin,
                                                const Eigen::MatrixXd& P_lin, int echo_order) const;
@@ -179,6 +184,7 @@ class AcousticEstimator final : public Estimator {
   std::optional<Vec3> start_m_;  // a given start, waiting for its first emission
   std::optional<PendingStart> pending_start_;
   std::optional<double> first_search_s_;  // the time of the first start search around the prior
+  bool search_whole_plan_ = false;  // the track was lost: the start searches the whole plan
   MultipathFixOptions start_search_;  // the start's search, set once from the options
   std::optional<GroundEchoFixer> ground_echo_;  // estimator "ground_echo"
   core::Rng rng_;                // the NLLS's random starts (fixed seed: results are reproducible)

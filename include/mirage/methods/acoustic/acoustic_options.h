@@ -52,7 +52,7 @@ struct AcousticOptions {
   /// body blocks still informs the filter. 2: a room with a floor and a ceiling returns the
   /// double echoes (floor-ceiling, wall-floor, wall-wall) among the first-order ones, and a filter
   /// that does not predict them pairs them with first-order paths and confirms the wrong pairing
-  /// (docs/results/acoustic.md: order 1 loses 3 of 20 hold-out runs and biases a 3-D height by
+  /// (docs/results/acoustic.md: order 1 loses hold-out runs and biases a 3-D height by
   /// 0.23 m). 1: first-order echoes only (a third of the cost). 0: direct paths only (the thesis).
   /// Ignored without a floor plan with a ceiling.
   int echo_order = 2;
@@ -64,6 +64,10 @@ struct AcousticOptions {
   /// metre of c T and microphone, >= 0; 0: every path takes its nearest stamp (no gate, the
   /// thesis). Derived: the scenario's false-alarm rate over a 40 m listening window.
   double clutter_density_per_m = 0.0;
+  /// Filters with the echo model: declare the track lost when its position leaves the floor plan
+  /// (or goes below the floor, above the ceiling) by more than 3 sigma, and start again from all
+  /// the stamps over the whole plan (multipath_fix.h).
+  bool restart_lost_track = true;
   /// Chi-square gate on one stamp's innovation (1 degree of freedom), >= 0; 0 = off (the thesis's
   /// EKF and REKF have none: the REKF's weights do the rejecting).
   double gate_chi2 = 0.0;
