@@ -411,7 +411,9 @@ bool AcousticEstimator::Outside(const Eigen::VectorXd& x, const Eigen::MatrixXd&
   if (!enclosed) return true;
   if (d == 3) {
     const double sz = 3.0 * sigma_m(2);
-    return p.z() < plan.floor_z_m() - sz || p.z() > plan.ceiling_z_m() + sz;
+    // The heights the start searches: the floor up to the highest a sender is carried.
+    const double top_m = std::min(plan.ceiling_z_m(), plan.floor_z_m() + options_.ground_echo.max_sender_height_m);
+    return p.z() < plan.floor_z_m() - sz || p.z() > top_m + sz;
   }
   return false;
 }

@@ -55,8 +55,8 @@ const core::OptionsDescriptor<AcousticOptions>& AcousticOptionsDescriptor() {
     d.Boolean(&O::restart_lost_track,
               {.key = "restart_lost_track",
                .doc = "Filters with the echo model: declare the track lost when its position leaves the floor plan "
-                      "(or goes below the floor, above the ceiling) by more than 3 sigma, and start again from all the "
-                      "stamps over the whole plan."});
+                      "(or goes below the floor, above the heights the start searches) by more than 3 sigma, and start "
+                      "again from all the stamps over the whole plan."});
     d.Number(&O::tdoa_bound_sigmas, {.key = "tdoa_bound_sigmas",
                                      .range = ValueRange::AtLeast(0.0),
                                      .doc = "Noise margin of the TDOA bound in stamp sigmas (times sqrt 2 for the "

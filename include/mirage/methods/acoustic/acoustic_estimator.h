@@ -145,8 +145,8 @@ class AcousticEstimator final : public Estimator {
   /// Association passes after the first (direct paths at the prediction) when echoes are
   /// predicted; a pass whose pairs equal the last one's ends the iteration early.
   static constexpr int kAssociationPasses = 3;
-  /// The state's position lies outside the floor plan (or below its floor, above its ceiling)
-  /// by more than 3 sigma per axis: the track has lost the sender.
+  /// The state's position lies outside the floor plan (or below its floor, above the heights the
+  /// start searches) by more than 3 sigma per axis: the track has lost the sender.
   [[nodiscard]] bool Outside(const Eigen::VectorXd& x, const Eigen::MatrixXd& P) const;
   /// The rows of one association pass at the linearisation point x_lin with covariance P_lin.
   [[nodiscard]] std::vector<Row> AssociateRows(const StampsByReceiver& stamps, const Eigen::VectorXd& x_lin,

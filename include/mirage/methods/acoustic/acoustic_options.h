@@ -65,8 +65,8 @@ struct AcousticOptions {
   /// thesis). Derived: the scenario's false-alarm rate over a 40 m listening window.
   double clutter_density_per_m = 0.0;
   /// Filters with the echo model: declare the track lost when its position leaves the floor plan
-  /// (or goes below the floor, above the ceiling) by more than 3 sigma, and start again from all
-  /// the stamps over the whole plan (multipath_fix.h).
+  /// (or goes below the floor, above the heights the start searches) by more than 3 sigma, and
+  /// start again from all the stamps over the whole plan (multipath_fix.h).
   bool restart_lost_track = true;
   /// Chi-square gate on one stamp's innovation (1 degree of freedom), >= 0; 0 = off (the thesis's
   /// EKF and REKF have none: the REKF's weights do the rejecting).
