@@ -232,24 +232,24 @@ std::vector<KEntry> KEntries(const std::vector<std::vector<PeakPair>>& mic_pairs
 /// microphone its pair nearest the centre (-1 if none) in *members, their number, and in *cost
 /// their truncated squared residuals (MSAC-like).
 int ClusterAround(const std::vector<KEntry>& entries, const KEntry& centre, std::vector<int>* members,
-                  std::vector<double>* distance, double* cost) {
+                  std::vector<double>* distance_s2, double* cost) {
   std::fill(members->begin(), members->end(), -1);
-  std::fill(distance->begin(), distance->end(), std::numeric_limits<double>::infinity());
+  std::fill(distance_s2->begin(), distance_s2->end(), std::numeric_limits<double>::infinity());
   int count = 0;
   const auto lo = std::lower_bound(entries.begin(), entries.end(), centre.k_s2 - centre.tol_s2,
                                    [](const KEntry& a, double v) { return a.k_s2 < v; });
   for (auto it = lo; it != entries.end() && it->k_s2 <= centre.k_s2 + centre.tol_s2; ++it) {
     const auto m = static_cast<std::size_t>(it->mic);
-    const double d = std::abs(it->k_s2 - centre.k_s2);
+    const double d_s2 = std::abs(it->k_s2 - centre.k_s2);
     if ((*members)[m] < 0) ++count;
-    if (d < (*distance)[m]) {
-      (*distance)[m] = d;
+    if (d_s2 < (*distance_s2)[m]) {
+      (*distance_s2)[m] = d_s2;
       (*members)[m] = it->pair;
     }
   }
   *cost = 0.0;
   for (std::size_t m = 0; m < members->size(); ++m) {
-    if ((*members)[m] >= 0) *cost += std::pow((*distance)[m] / centre.tol_s2, 2);
+    if ((*members)[m] >= 0) *cost += std::pow((*distance_s2)[m] / centre.tol_s2, 2);
   }
   return count;
 }
@@ -262,11 +262,11 @@ int BestKCluster(const std::vector<std::vector<PeakPair>>& mic_pairs, double t_s
   chosen->assign(mic_pairs.size(), -1);
   int best_count = 0;
   *cost = 0.0;
-  std::vector<double> distance(mic_pairs.size());
+  std::vector<double> distance_s2(mic_pairs.size());
   std::vector<int> members(mic_pairs.size());
   for (const KEntry& centre : entries) {
     double centre_cost = 0.0;
-    const int count = ClusterAround(entries, centre, &members, &distance, &centre_cost);
+    const int count = ClusterAround(entries, centre, &members, &distance_s2, &centre_cost);
     // Most microphones; among equals the tightest.
     if (count > best_count || (count == best_count && centre_cost < *cost)) {
       best_count = count;
@@ -288,11 +288,11 @@ std::vector<std::vector<int>> KClusters(const std::vector<std::vector<PeakPair>>
     std::vector<int> members;
   };
   std::vector<Ranked> clusters;
-  std::vector<double> distance(mic_pairs.size());
+  std::vector<double> distance_s2(mic_pairs.size());
   std::vector<int> members(mic_pairs.size());
   for (const KEntry& centre : entries) {
     double cost = 0.0;
-    const int count = ClusterAround(entries, centre, &members, &distance, &cost);
+    const int count = ClusterAround(entries, centre, &members, &distance_s2, &cost);
     if (count < 3) continue;
     const auto same = std::find_if(clusters.begin(), clusters.end(), [&](const Ranked& r) { return r.members == members; });
     if (same == clusters.end()) {

@@ -132,6 +132,10 @@ void AcousticEstimator::Start(const Vec3& position_m, double position_sigma_m,
   have_emission_ = false;
   first_search_s_.reset();
   search_whole_plan_ = false;
+  // The dead reckoning's heading is taken again from this track's velocity (after a restart the
+  // old one came from a track that ran away, and the samples while lost were not integrated).
+  pdr_.reset();
+  pdr_started_ = false;
 }
 
 void AcousticEstimator::Initialize(const Prior& prior) {
@@ -396,8 +400,8 @@ bool AcousticEstimator::Outside(const Eigen::VectorXd& x, const Eigen::MatrixXd&
   if (plan.walls().empty()) return false;
   const int d = dim();
   const Vec3 p = PositionOf(x);
-  // 3 sigma of the position in every direction: the nearest point of that box inside the plan
-  // keeps the track (a track near a wall, a noisy update).
+  // 3 sigma of the position in every direction: the track stays while its centre or a corner or
+  // edge midpoint of that box lies inside the plan (a track near a wall, a noisy update).
   const Eigen::VectorXd sigma_m = P.diagonal().head(d).cwiseSqrt();
   const auto [lo, hi] = plan.Bounds();
   const Vec2 nearest = p.head<2>().cwiseMax(lo - 3.0 * sigma_m.head<2>()).cwiseMin(hi + 3.0 * sigma_m.head<2>());
@@ -410,10 +414,10 @@ bool AcousticEstimator::Outside(const Eigen::VectorXd& x, const Eigen::MatrixXd&
   }
   if (!enclosed) return true;
   if (d == 3) {
-    const double sz = 3.0 * sigma_m(2);
+    const double margin_z_m = 3.0 * sigma_m(2);
     // The heights the start searches: the floor up to the highest a sender is carried.
     const double top_m = std::min(plan.ceiling_z_m(), plan.floor_z_m() + options_.ground_echo.max_sender_height_m);
-    return p.z() < plan.floor_z_m() - sz || p.z() > top_m + sz;
+    return p.z() < plan.floor_z_m() - margin_z_m || p.z() > top_m + margin_z_m;
   }
   return false;
 }
@@ -590,6 +594,7 @@ StepOutput AcousticEstimator::Filter(const core::Epoch& epoch) {
     pending_start_.reset();
     first_search_s_.reset();
     out.relocalized = true;
+    out.fixed = false;  // the estimate outside the plan is no fix
   }
   return out;
 }

@@ -178,18 +178,19 @@ std::optional<GroundEchoFixer::SelectionFit> GroundEchoFixer::FitSelection(
   const auto mic_residuals_m = [&](const estimation::SolverFix& f) {
     std::vector<double> worst_m(mics_m_.size(), 0.0);
     for (std::size_t r = 0; r < receivers_m.size(); ++r) {
-      auto& w = worst_m[static_cast<std::size_t>(row_mic[r])];
-      w = std::max(w, std::abs(values_m[r] - (f.position_m - receivers_m[r]).norm() - f.offset_m));
+      auto& worst = worst_m[static_cast<std::size_t>(row_mic[r])];
+      worst = std::max(worst, std::abs(values_m[r] - (f.position_m - receivers_m[r]).norm() - f.offset_m));
     }
     return worst_m;
   };
   const double gate_m = 3.0 * sigma_m_;
   const auto within = [&](const estimation::SolverFix& f) {
-    const auto w = mic_residuals_m(f);
-    std::vector<bool> in(w.size(), false);
-    for (const int m : row_mic) in[static_cast<std::size_t>(m)] = w[static_cast<std::size_t>(m)] <= gate_m;
+    const auto residual_m = mic_residuals_m(f);
+    std::vector<bool> in(residual_m.size(), false);
+    for (const int m : row_mic) in[static_cast<std::size_t>(m)] = residual_m[static_cast<std::size_t>(m)] <= gate_m;
     return in;
   };
+  std::size_t smallest_set = 0;  // microphones of the smallest set, when the consensus ran
   std::vector<bool> used(mics_m_.size(), false);
   for (const int m : row_mic) used[static_cast<std::size_t>(m)] = true;
   std::optional<estimation::SolverFix> fix = fit(used, last_m_);
@@ -202,6 +203,10 @@ std::optional<GroundEchoFixer::SelectionFit> GroundEchoFixer::FitSelection(
     // fix are its consensus, and the largest one (ties: the smaller sum of squared residuals)
     // is refitted and checked once more against all microphones. Up to C(12, 4) = 495 solves
     // for twelve microphones without echoes, only at emissions whose full fit fails the test.
+    // With echo rows the smallest set is two microphones, whose four receivers (each with its
+    // floor mirror) lie in one vertical plane: its fit has a mirror solution across that plane,
+    // and the one found depends on the start (the last fix); the consensus of the wrong one is
+    // the smaller.
     std::vector<int> mics;
     std::vector<std::size_t> rows_per_mic;
     for (std::size_t m = 0; m < mics_m_.size(); ++m) {
@@ -217,37 +222,40 @@ std::optional<GroundEchoFixer::SelectionFit> GroundEchoFixer::FitSelection(
     std::fill(pick.begin(), pick.begin() + static_cast<std::ptrdiff_t>(k), true);
     std::vector<bool> best_in;
     std::size_t best_count = 0;
-    double best_ss = 0.0;
+    double best_sum_sq_m2 = 0.0;  // of each consensus microphone's largest residual
     const std::optional<Vec3> start_m = fix ? std::optional<Vec3>(fix->position_m) : last_m_;
     do {
       std::vector<bool> subset(mics_m_.size(), false);
       for (std::size_t i = 0; i < mics.size(); ++i) subset[static_cast<std::size_t>(mics[i])] = pick[i];
       const auto f = fit(subset, start_m);
       if (!f) continue;
-      const auto w = mic_residuals_m(*f);
+      const auto residual_m = mic_residuals_m(*f);
       const auto in = within(*f);
       std::size_t count = 0;
-      double ss = 0.0;
+      double sum_sq_m2 = 0.0;
       for (std::size_t m = 0; m < in.size(); ++m) {
-        if (in[m]) ++count, ss += w[m] * w[m];
+        if (in[m]) ++count, sum_sq_m2 += residual_m[m] * residual_m[m];
       }
-      if (count > best_count || (count == best_count && count > 0 && ss < best_ss)) {
+      if (count > best_count || (count == best_count && count > 0 && sum_sq_m2 < best_sum_sq_m2)) {
         best_in = in;
         best_count = count;
-        best_ss = ss;
+        best_sum_sq_m2 = sum_sq_m2;
       }
     } while (std::prev_permutation(pick.begin(), pick.end()));
     // A consensus of the smallest set alone fits exactly and verifies nothing: at least one
     // microphone beyond it must agree.
     if (best_count <= k) return std::nullopt;
+    smallest_set = k;
     used = best_in;
     fix = fit(used, start_m);
     if (fix) {
       // The consensus fit may admit a microphone the smallest set's noisier fix had left out.
       const auto again = within(*fix);
       if (std::count(again.begin(), again.end(), true) > std::count(used.begin(), used.end(), true)) {
-        used = again;
-        fix = fit(used, fix->position_m);
+        if (auto wider = fit(again, fix->position_m)) {
+          used = again;
+          fix = std::move(wider);
+        }
       }
     }
   }
@@ -256,18 +264,22 @@ std::optional<GroundEchoFixer::SelectionFit> GroundEchoFixer::FitSelection(
   // rows for the unknowns remain.
   for (;;) {
     if (!fix) return std::nullopt;
-    const auto w = mic_residuals_m(*fix);
+    const auto residual_m = mic_residuals_m(*fix);
     int worst = -1;
     double worst_m = gate_m;
-    for (std::size_t m = 0; m < w.size(); ++m) {
-      if (used[m] && w[m] > worst_m) {
-        worst_m = w[m];
+    for (std::size_t m = 0; m < residual_m.size(); ++m) {
+      if (used[m] && residual_m[m] > worst_m) {
+        worst_m = residual_m[m];
         worst = static_cast<int>(m);
       }
     }
     if (worst < 0) break;
     used[static_cast<std::size_t>(worst)] = false;
     fix = fit(used, fix->position_m);
+  }
+  // A consensus cut down to the smallest set verifies nothing either.
+  if (smallest_set > 0 && static_cast<std::size_t>(std::count(used.begin(), used.end(), true)) <= smallest_set) {
+    return std::nullopt;
   }
   SelectionFit out{*fix, 0, 0.0, 0, 0};
   for (std::size_t r = 0; r < receivers_m.size(); ++r) {
@@ -279,6 +291,13 @@ std::optional<GroundEchoFixer::SelectionFit> GroundEchoFixer::FitSelection(
     out.sum_sq_m2 += e_m * e_m;
   }
   out.mics = static_cast<int>(std::count(used.begin(), used.end(), true));
+  // (H^T R^-1 H)^-1 H^T R^-1 1 with equal sigmas: the covariance times sum u_r / sigma^2.
+  Vec3 sum_u = Vec3::Zero();
+  for (std::size_t r = 0; r < receivers_m.size(); ++r) {
+    if (!used[static_cast<std::size_t>(row_mic[r])]) continue;
+    sum_u += (fix->position_m - receivers_m[r]).normalized();
+  }
+  out.common_shift_gain = fix->covariance_m2.topLeftCorner<3, 3>() * sum_u / (sigma_m_ * sigma_m_);
   return out;
 }
 
@@ -368,6 +387,13 @@ GroundEchoFix GroundEchoFixer::Process(const core::Epoch& epoch) {
   // fix, the CRLB of the range model (t_0 given) or of the pseudo-range model (t_0 unknown: the
   // position block of [x, y, z, b]), each row with sigma.
   const Eigen::Matrix3d crlb_m2 = fix->covariance_m2.topLeftCorner<3, 3>();
+  // The reported covariance adds the voted t_0's own error (its least-squares sigma over the
+  // window), which enters every row alike; the DOPs stay those of the geometry (Eq. 8.10-8.12).
+  Eigen::Matrix3d covariance_m2 = crlb_m2;
+  if (options_.sending_time == "estimated") {
+    const Vec3 gain_m = best->common_shift_gain * c_mps_ * vote->t0_sigma_s;
+    covariance_m2 += gain_m * gain_m.transpose();
+  }
   const double hdop = std::sqrt(crlb_m2(0, 0) + crlb_m2(1, 1)) / sigma_m_;
   const double vdop = std::sqrt(crlb_m2(2, 2)) / sigma_m_;
   if (!std::isfinite(hdop) || !std::isfinite(vdop)) return out;
@@ -376,7 +402,7 @@ GroundEchoFix GroundEchoFixer::Process(const core::Epoch& epoch) {
   out.los_rows = best->los_rows;
   out.echo_rows = best->echo_rows;
   out.position_m = fix->position_m;
-  out.covariance_m2 = crlb_m2;
+  out.covariance_m2 = covariance_m2;
   out.hdop = hdop;
   out.vdop = vdop;
   out.sending_time_s = epoch.t_s + (offset_unknown ? fix->offset_m / c_mps_ : *t0_s);

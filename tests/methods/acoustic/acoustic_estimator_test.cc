@@ -322,6 +322,9 @@ double ErrorFromAStartOutside(bool restart, int* restarts) {
     const auto emission = channel::SimulateEmission(sim, reflectors, mics, p, Vec2(1.0, 0.0), 0.01 + 0.2 * k, rng);
     const auto out = estimator.Process(EpochOf(world, emission));
     *restarts += out.relocalized ? 1 : 0;
+    if (out.relocalized) {
+      EXPECT_FALSE(out.fixed);  // the estimate outside the plan is no fix
+    }
     if (k >= 20) worst_m = std::max(worst_m, (out.agents.front().position_m.head<2>() - p.head<2>()).norm());
     p.x() += 0.1;  // 0.5 m/s
   }

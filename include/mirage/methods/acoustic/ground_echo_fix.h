@@ -40,10 +40,13 @@
 //     a fix above the ceiling restarts from that mirror.
 //  5. Its CRLB and DOPs at the fix: (H^T R^-1 H)^-1 of the rows used, the range model (t_0 given)
 //     or the pseudo-range model (t_0 unknown); eval/dop.h computes the same from the geometry.
+//     The reported covariance adds, for a voted t_0, its own error (its least-squares sigma
+//     through the fix's response to a common range offset): the CRLB does not contain it.
 // An emission without three microphones in the vote's cluster, or with fewer rows than unknowns,
-// or an unverified consensus, or a degenerate or unconverged solve, has no fix. Left open: second-order echoes (floor-
-// ceiling, wall-floor) form further consistent clusters that the first-arrival rule does not
-// remove (docs/results/acoustic.md: order 2 in the example's last grid line).
+// or an unverified consensus, or a degenerate or unconverged solve, has no fix. Left open:
+// second-order echoes (floor-ceiling, wall-floor) form further consistent clusters that the
+// first-arrival rule does not remove (docs/results/acoustic.md: order 2 in the example's last
+// grid line).
 #pragma once
 
 #include <deque>
@@ -85,6 +88,7 @@ const core::OptionsDescriptor<GroundEchoOptions>& GroundEchoOptionsDescriptor();
 struct GroundEchoFix {
   bool found = false;
   Vec3 position_m = Vec3::Zero();
+  /// The CRLB of the rows used, plus a voted t_0's error (m^2; see step 5).
   Eigen::Matrix3d covariance_m2 = Eigen::Matrix3d::Zero();
   double hdop = 0.0;  ///< at the fix, the rows used (Eq. 8.10-8.12)
   double vdop = 0.0;
@@ -149,10 +153,14 @@ class GroundEchoFixer {
     double sum_sq_m2 = 0.0;
     int los_rows = 0;
     int echo_rows = 0;
+    /// The fix's change per metre of a range offset common to every row (a sending time off by
+    /// dt moves each range by c dt): (H^T H)^-1 H^T 1, unitless.
+    Vec3 common_shift_gain = Vec3::Zero();
   };
   /// The fix of one emission's selection (per microphone its LOS and floor-echo stamp, indices
   /// into stamps_s): the largest consensus of microphones within 3 sigma; std::nullopt when no
-  /// rows for the unknowns remain or no solve converges.
+  /// rows for the unknowns remain, no solve converges, or a consensus is no larger than the
+  /// smallest set (unverified).
   [[nodiscard]] std::optional<SelectionFit> FitSelection(const std::vector<estimation::MicStampChoice>& chosen,
                                                          const std::vector<std::vector<double>>& stamps_s,
                                                          const std::optional<double>& t0_s) const;
