@@ -186,7 +186,7 @@ MultipathSearchRegion AcousticEstimator::SearchRegion(bool around_prior, double 
   // In height: between the floor and the highest a sender is carried, below the ceiling (the
   // whole of it when the prior's box leaves nothing).
   const double floor_z_m = world_.floor_plan.floor_z_m();
-  const double top_m = std::min(world_.floor_plan.ceiling_z_m(), floor_z_m + options_.ground_echo.max_sender_height_m);
+  const double top_m = HighestSender_m();
   region.lo_m.z() = around_prior ? std::clamp(region.lo_m.z(), floor_z_m, top_m) : floor_z_m;
   region.hi_m.z() = around_prior ? std::clamp(region.hi_m.z(), floor_z_m, top_m) : top_m;
   if (!(region.hi_m.z() > region.lo_m.z())) {
@@ -395,6 +395,10 @@ std::vector<AcousticEstimator::Row> AcousticEstimator::AssociateRows(const Stamp
   return rows;
 }
 
+double AcousticEstimator::HighestSender_m() const {
+  return std::min(world_.floor_plan.ceiling_z_m(), world_.floor_plan.floor_z_m() + options_.ground_echo.max_sender_height_m);
+}
+
 bool AcousticEstimator::Outside(const Eigen::VectorXd& x, const Eigen::MatrixXd& P) const {
   const geometry::FloorPlan& plan = world_.floor_plan;
   if (plan.walls().empty()) return false;
@@ -403,9 +407,6 @@ bool AcousticEstimator::Outside(const Eigen::VectorXd& x, const Eigen::MatrixXd&
   // 3 sigma of the position in every direction: the track stays while its centre or a corner or
   // edge midpoint of that box lies inside the plan (a track near a wall, a noisy update).
   const Eigen::VectorXd sigma_m = P.diagonal().head(d).cwiseSqrt();
-  const auto [lo, hi] = plan.Bounds();
-  const Vec2 nearest = p.head<2>().cwiseMax(lo - 3.0 * sigma_m.head<2>()).cwiseMin(hi + 3.0 * sigma_m.head<2>());
-  if ((nearest - p.head<2>()).norm() > 0.0) return true;
   bool enclosed = plan.Encloses(p.head<2>());
   for (int dx = -1; dx <= 1 && !enclosed; ++dx) {
     for (int dy = -1; dy <= 1 && !enclosed; ++dy) {
@@ -414,10 +415,9 @@ bool AcousticEstimator::Outside(const Eigen::VectorXd& x, const Eigen::MatrixXd&
   }
   if (!enclosed) return true;
   if (d == 3) {
+    // The heights the start searches.
     const double margin_z_m = 3.0 * sigma_m(2);
-    // The heights the start searches: the floor up to the highest a sender is carried.
-    const double top_m = std::min(plan.ceiling_z_m(), plan.floor_z_m() + options_.ground_echo.max_sender_height_m);
-    return p.z() < plan.floor_z_m() - margin_z_m || p.z() > top_m + margin_z_m;
+    return p.z() < plan.floor_z_m() - margin_z_m || p.z() > HighestSender_m() + margin_z_m;
   }
   return false;
 }

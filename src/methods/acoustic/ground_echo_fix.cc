@@ -282,21 +282,19 @@ std::optional<GroundEchoFixer::SelectionFit> GroundEchoFixer::FitSelection(
     return std::nullopt;
   }
   SelectionFit out{*fix, 0, 0.0, 0, 0};
+  Vec3 sum_u = Vec3::Zero();  // the rows' unit vectors receiver -> sender
   for (std::size_t r = 0; r < receivers_m.size(); ++r) {
     const auto m = static_cast<std::size_t>(row_mic[r]);
     if (!used[m]) continue;
     const bool is_echo = r > 0 && row_mic[r - 1] == row_mic[r];
     (is_echo ? out.echo_rows : out.los_rows) += 1;
-    const double e_m = values_m[r] - (fix->position_m - receivers_m[r]).norm() - fix->offset_m;
+    const Vec3 leg_m = fix->position_m - receivers_m[r];
+    const double e_m = values_m[r] - leg_m.norm() - fix->offset_m;
     out.sum_sq_m2 += e_m * e_m;
+    sum_u += leg_m.normalized();
   }
   out.mics = static_cast<int>(std::count(used.begin(), used.end(), true));
   // (H^T R^-1 H)^-1 H^T R^-1 1 with equal sigmas: the covariance times sum u_r / sigma^2.
-  Vec3 sum_u = Vec3::Zero();
-  for (std::size_t r = 0; r < receivers_m.size(); ++r) {
-    if (!used[static_cast<std::size_t>(row_mic[r])]) continue;
-    sum_u += (fix->position_m - receivers_m[r]).normalized();
-  }
   out.common_shift_gain = fix->covariance_m2.topLeftCorner<3, 3>() * sum_u / (sigma_m_ * sigma_m_);
   return out;
 }

@@ -145,6 +145,9 @@ class AcousticEstimator final : public Estimator {
   /// Association passes after the first (direct paths at the prediction) when echoes are
   /// predicted; a pass whose pairs equal the last one's ends the iteration early.
   static constexpr int kAssociationPasses = 3;
+  /// The highest a sender may be (m): the ceiling, or the highest it is carried above the floor
+  /// (ground_echo.max_sender_height_m) if lower. The start searches no higher.
+  [[nodiscard]] double HighestSender_m() const;
   /// The state's position lies outside the floor plan (or below its floor, above the heights the
   /// start searches) by more than 3 sigma per axis: the track has lost the sender.
   [[nodiscard]] bool Outside(const Eigen::VectorXd& x, const Eigen::MatrixXd& P) const;
