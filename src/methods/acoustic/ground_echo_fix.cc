@@ -161,9 +161,11 @@ std::optional<GroundEchoFixer::SelectionFit> GroundEchoFixer::FitSelection(
     if (!f) return std::nullopt;
     // Coplanar microphones (LOS rows only) fit the sender and its mirror image in their plane
     // alike: a fix above the ceiling, or higher than any sender, is that mirror; start again from
-    // below the microphones.
+    // below the microphones. A fix below the floor (by more than 3 sigma) is no sender either:
+    // three collinear microphones fit any point of a circle around their line.
     const auto implausible = [&](const Vec3& p) {
-      return (ceiling_z_m_ && p.z() > *ceiling_z_m_) || p.z() - floor_z_m_ > options_.max_sender_height_m;
+      return (ceiling_z_m_ && p.z() > *ceiling_z_m_) || p.z() - floor_z_m_ > options_.max_sender_height_m ||
+             p.z() < floor_z_m_ - 3.0 * sigma_m_;
     };
     if (implausible(f->position_m)) {
       Vec3 mirrored_m = f->position_m;
@@ -190,7 +192,22 @@ std::optional<GroundEchoFixer::SelectionFit> GroundEchoFixer::FitSelection(
     for (const int m : row_mic) in[static_cast<std::size_t>(m)] = residual_m[static_cast<std::size_t>(m)] <= gate_m;
     return in;
   };
-  std::size_t smallest_set = 0;  // microphones of the smallest set, when the consensus ran
+  // The smallest set: the fewest microphones whose rows cover the unknowns. A fix of no more
+  // microphones fits them exactly (or nearly) whatever their stamps are, and verifies nothing: at
+  // least one microphone beyond it must agree, whether or not the consensus search ran.
+  std::vector<int> mics;
+  std::vector<std::size_t> rows_per_mic;
+  for (std::size_t m = 0; m < mics_m_.size(); ++m) {
+    const auto rows = static_cast<std::size_t>(std::count(row_mic.begin(), row_mic.end(), static_cast<int>(m)));
+    if (rows == 0) continue;
+    mics.push_back(static_cast<int>(m));
+    rows_per_mic.push_back(rows);
+  }
+  std::sort(rows_per_mic.rbegin(), rows_per_mic.rend());
+  std::size_t smallest_set = 0;
+  for (std::size_t covered = 0; smallest_set < rows_per_mic.size() && covered < unknowns; ++smallest_set) {
+    covered += rows_per_mic[smallest_set];
+  }
   std::vector<bool> used(mics_m_.size(), false);
   for (const int m : row_mic) used[static_cast<std::size_t>(m)] = true;
   std::optional<estimation::SolverFix> fix = fit(used, last_m_);
@@ -200,52 +217,43 @@ std::optional<GroundEchoFixer::SelectionFit> GroundEchoFixer::FitSelection(
     // microphones one at a time from that fit can end on a few consistent but wrong ones. The
     // largest consensus instead (Fischler & Bolles, the thesis's [84]): every smallest set of
     // microphones with rows for the unknowns is solved, the microphones within 3 sigma of its
-    // fix are its consensus, and the largest one (ties: the smaller sum of squared residuals)
-    // is refitted and checked once more against all microphones. Up to C(12, 4) = 495 solves
+    // fix are its consensus, and the largest one is refitted and checked once more against all
+    // microphones. Ties go to the fix that explains more of the emission's stamps, each
+    // microphone's LOS and floor echo among all its stamps (SupportAt), then to the smaller sum
+    // of their squared misses: three nearly collinear microphones plus a false alarm fit a point
+    // on the circle around their line as closely as the sender fits four true stamps, but the
+    // other microphones' stamps do not follow that point. Up to C(12, 4) = 495 solves
     // for twelve microphones without echoes, only at emissions whose full fit fails the test.
     // With echo rows the smallest set is two microphones, whose four receivers (each with its
     // floor mirror) lie in one vertical plane: its fit has a mirror solution across that plane,
     // and the one found depends on the start (the last fix); the consensus of the wrong one is
     // the smaller.
-    std::vector<int> mics;
-    std::vector<std::size_t> rows_per_mic;
-    for (std::size_t m = 0; m < mics_m_.size(); ++m) {
-      const auto rows = static_cast<std::size_t>(std::count(row_mic.begin(), row_mic.end(), static_cast<int>(m)));
-      if (rows == 0) continue;
-      mics.push_back(static_cast<int>(m));
-      rows_per_mic.push_back(rows);
-    }
-    std::sort(rows_per_mic.rbegin(), rows_per_mic.rend());
-    std::size_t k = 0;
-    for (std::size_t covered = 0; k < rows_per_mic.size() && covered < unknowns; ++k) covered += rows_per_mic[k];
+    const std::size_t k = smallest_set;
     std::vector<bool> pick(mics.size(), false);
     std::fill(pick.begin(), pick.begin() + static_cast<std::ptrdiff_t>(k), true);
     std::vector<bool> best_in;
     std::size_t best_count = 0;
-    double best_sum_sq_m2 = 0.0;  // of each consensus microphone's largest residual
+    int best_support = 0;
+    double best_sum_sq_m2 = 0.0;
     const std::optional<Vec3> start_m = fix ? std::optional<Vec3>(fix->position_m) : last_m_;
     do {
       std::vector<bool> subset(mics_m_.size(), false);
       for (std::size_t i = 0; i < mics.size(); ++i) subset[static_cast<std::size_t>(mics[i])] = pick[i];
       const auto f = fit(subset, start_m);
       if (!f) continue;
-      const auto residual_m = mic_residuals_m(*f);
       const auto in = within(*f);
-      std::size_t count = 0;
-      double sum_sq_m2 = 0.0;
-      for (std::size_t m = 0; m < in.size(); ++m) {
-        if (in[m]) ++count, sum_sq_m2 += residual_m[m] * residual_m[m];
-      }
-      if (count > best_count || (count == best_count && count > 0 && sum_sq_m2 < best_sum_sq_m2)) {
+      const auto count = static_cast<std::size_t>(std::count(in.begin(), in.end(), true));
+      if (count == 0 || count < best_count) continue;
+      const StampSupport support = SupportAt(f->position_m, t0_s ? c_mps_ * *t0_s : f->offset_m, stamps_s);
+      if (count > best_count || support.rows > best_support ||
+          (support.rows == best_support && support.sum_sq_m2 < best_sum_sq_m2)) {
         best_in = in;
         best_count = count;
-        best_sum_sq_m2 = sum_sq_m2;
+        best_support = support.rows;
+        best_sum_sq_m2 = support.sum_sq_m2;
       }
     } while (std::prev_permutation(pick.begin(), pick.end()));
-    // A consensus of the smallest set alone fits exactly and verifies nothing: at least one
-    // microphone beyond it must agree.
     if (best_count <= k) return std::nullopt;
-    smallest_set = k;
     used = best_in;
     fix = fit(used, start_m);
     if (fix) {
@@ -277,8 +285,7 @@ std::optional<GroundEchoFixer::SelectionFit> GroundEchoFixer::FitSelection(
     used[static_cast<std::size_t>(worst)] = false;
     fix = fit(used, fix->position_m);
   }
-  // A consensus cut down to the smallest set verifies nothing either.
-  if (smallest_set > 0 && static_cast<std::size_t>(std::count(used.begin(), used.end(), true)) <= smallest_set) {
+  if (static_cast<std::size_t>(std::count(used.begin(), used.end(), true)) <= smallest_set) {
     return std::nullopt;
   }
   SelectionFit out{*fix, 0, 0.0, 0, 0};
@@ -296,6 +303,30 @@ std::optional<GroundEchoFixer::SelectionFit> GroundEchoFixer::FitSelection(
   out.mics = static_cast<int>(std::count(used.begin(), used.end(), true));
   // (H^T R^-1 H)^-1 H^T R^-1 1 with equal sigmas: the covariance times sum u_r / sigma^2.
   out.common_shift_gain = fix->covariance_m2.topLeftCorner<3, 3>() * sum_u / (sigma_m_ * sigma_m_);
+  return out;
+}
+
+GroundEchoFixer::StampSupport GroundEchoFixer::SupportAt(const Vec3& position_m, double origin_m,
+                                                        const std::vector<std::vector<double>>& stamps_s) const {
+  const double gate_m = 3.0 * sigma_m_;
+  StampSupport out;
+  // Whether a stamp lies within the gate of range_m; the nearest one's miss is added.
+  const auto explained = [&](const std::vector<double>& list_s, double range_m) {
+    double nearest_m = gate_m;
+    bool found = false;
+    for (const double t_s : list_s) {
+      const double miss_m = std::abs(c_mps_ * t_s - origin_m - range_m);
+      if (miss_m <= nearest_m) nearest_m = miss_m, found = true;
+    }
+    if (found) out.rows += 1, out.sum_sq_m2 += nearest_m * nearest_m;
+    return found;
+  };
+  for (std::size_t m = 0; m < mics_m_.size(); ++m) {
+    const Vec3 mirrored_m(mics_m_[m].x(), mics_m_[m].y(), 2.0 * floor_z_m_ - mics_m_[m].z());
+    if (explained(stamps_s[m], (position_m - mics_m_[m]).norm())) {
+      explained(stamps_s[m], (position_m - mirrored_m).norm());
+    }
+  }
   return out;
 }
 

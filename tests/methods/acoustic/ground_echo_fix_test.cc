@@ -97,6 +97,33 @@ TEST(GroundEchoFix, AFalseAlarmBeforeTheLineOfSightCostsOnlyItsMicrophone) {
   EXPECT_EQ(fix.echo_rows, 8);
 }
 
+// Three microphones' LOS ranges with a known sending time fit some point exactly whatever their
+// stamps are: such a fix verifies nothing (nor do four with the sending time solved). A fourth
+// microphone that agrees verifies it.
+TEST(GroundEchoFix, AFixOfTheSmallestSetAloneIsNoFix) {
+  const Vec3 sender(7.0, 4.0, 1.2);
+  for (const std::size_t heard : {3U, 4U}) {
+    for (const std::string sending_time : {"known", "unknown"}) {
+      // The smallest set: 3 microphones of LOS rows with t_0 known, 4 with it solved.
+      if (sending_time == "unknown" && heard == 3) continue;
+      const std::size_t smallest = sending_time == "known" ? 3 : 4;
+      GroundEchoFixer fixer = Fixer(sending_time, false);
+      core::Rng rng(8);
+      GroundEchoFix fix;
+      for (int k = 0; k < 3; ++k) {
+        core::Epoch epoch = Emission(CeilingMics(), sender, 1.0 + k * kInterval, 0.0, 0.0, rng, true);
+        epoch.toas.resize(heard);
+        fix = fixer.Process(epoch);
+      }
+      SCOPED_TRACE(sending_time + ", " + std::to_string(heard) + " microphones heard");
+      ASSERT_EQ(fix.found, heard > smallest);
+      if (fix.found) {
+        EXPECT_NEAR((fix.position_m - sender).norm(), 0.0, 1e-6);
+      }
+    }
+  }
+}
+
 TEST(GroundEchoFix, AKnownSendingTimeNeedsTheRecordsEmissionTime) {
   GroundEchoFixer fixer = Fixer("known", true);
   core::Rng rng(5);

@@ -31,13 +31,14 @@
 //     Newton) on the LOS rows |S - M_i| = c (T_L,i - t_0) and, with echoes, the floor-echo rows
 //     |S - M'_i| = c (T_r,i - t_0), from the last fix, else below the microphones' centroid.
 //     When a row lies beyond 3 sigma, the largest consensus of microphones (every smallest set
-//     with rows for the unknowns solved, the microphones within 3 sigma of its fix counted;
-//     Fischler & Bolles) is refitted, then the worst microphone beyond 3 sigma left out while
-//     rows remain; a consensus no larger than the smallest set has no fix. The vote's other K
+//     with rows for the unknowns solved, the microphones within 3 sigma of its fix counted, ties
+//     to the fix explaining more of all the emission's stamps; Fischler & Bolles) is refitted,
+//     then the worst microphone beyond 3 sigma left out while rows remain; a fix of no more
+//     microphones than the smallest set fits them whatever their stamps and has no fix. The vote's other K
 //     clusters are fitted too (all with a known t_0, whose rows are absolute ranges; only those
 //     as large as the chosen one otherwise) and the fix keeping the most microphones wins. With
 //     LOS rows only, coplanar microphones fit the sender's mirror image in their plane as well:
-//     a fix above the ceiling restarts from that mirror.
+//     a fix above the ceiling restarts from that mirror; a fix below the floor is rejected.
 //  5. Its CRLB and DOPs at the fix: (H^T R^-1 H)^-1 of the rows used, the range model (t_0 given)
 //     or the pseudo-range model (t_0 unknown); eval/dop.h computes the same from the geometry.
 //     The reported covariance adds, for a voted t_0, its own error (its least-squares sigma
@@ -159,11 +160,22 @@ class GroundEchoFixer {
   };
   /// The fix of one emission's selection (per microphone its LOS and floor-echo stamp, indices
   /// into stamps_s): the largest consensus of microphones within 3 sigma; std::nullopt when no
-  /// rows for the unknowns remain, no solve converges, or a consensus is no larger than the
-  /// smallest set (unverified).
+  /// rows for the unknowns remain, no solve converges, or the fix keeps no more microphones than
+  /// the smallest set (unverified), with or without the consensus search.
   [[nodiscard]] std::optional<SelectionFit> FitSelection(const std::vector<estimation::MicStampChoice>& chosen,
                                                          const std::vector<std::vector<double>>& stamps_s,
                                                          const std::optional<double>& t0_s) const;
+
+  /// The stamps a hypothesis explains, over all of an emission's stamps (not only a selection's):
+  /// per microphone a stamp within 3 sigma of its LOS arrival and, when there is one, a stamp
+  /// within 3 sigma of its floor-echo arrival.
+  struct StampSupport {
+    int rows = 0;             // LOS and floor-echo stamps explained
+    double sum_sq_m2 = 0.0;   // of the nearest stamps' misses
+  };
+  /// @param origin_m  c t_0 (t_0 given) or the solved offset: a stamp t lies at range c t - origin_m
+  [[nodiscard]] StampSupport SupportAt(const Vec3& position_m, double origin_m,
+                                       const std::vector<std::vector<double>>& stamps_s) const;
 
   std::deque<Emission> window_;
   std::optional<Track> track_;
