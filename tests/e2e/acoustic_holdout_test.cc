@@ -6,14 +6,12 @@
 // follow each other (multipath_fix.h, the estimator's StartFromStamps); a
 // filter that paired the dense echoes at a start 0.5 m off lost 6 of 20 runs here. 10 runs each
 // with the file's seed.
-#include <filesystem>
-#include <fstream>
 #include <string>
 #include <vector>
 
-#include <unistd.h>
-
 #include <gtest/gtest.h>
+
+#include "e2e/extended_example.h"
 
 #include "mirage/io/scenario.h"
 #include "mirage/pipeline/runner.h"
@@ -61,23 +59,11 @@ TEST(AcousticHoldout, StartsItselfAndFromAWidePriorWithoutLosingARun) {
 //    (`restart_lost_track`): 2 of 20 lost with it, 5 without.
 // Not solved: see docs/results/acoustic.md, "Echoes beyond the predicted order".
 TEST(AcousticHoldout, WithUnmodelledEchoesTheStartFollowsTheWalkerAndALostTrackStartsAgain) {
-  namespace fs = std::filesystem;
-  // A directory of this process's own, removed however the test ends.
-  struct TempDir {
-    fs::path path = fs::temp_directory_path() / ("mirage_holdout_order3_" + std::to_string(::getpid()));
-    TempDir() { fs::create_directories(path); }
-    ~TempDir() { std::error_code ignored; fs::remove_all(path, ignored); }
-  } dir;
-  const fs::path file = dir.path / "order3.yaml";
-  std::ofstream(file) << "extends: " << MIRAGE_SOURCE_DIR << "/examples/acoustic_holdout.yaml\n"
-                      << "measurements: {max_order: 3}\nmethod: {restart_lost_track: true}\n"
-                      << "grid:\n  - {method.restart_lost_track: [false, true]}\n";
-  io::ScenarioOverrides overrides;
-  overrides.runs = 20;
-  overrides.threads = 0;
-  const io::Scenario scenario = io::LoadScenario(file.string(), overrides);
-  ASSERT_EQ(scenario.variants.size(), 2u);
-  const auto summaries = Summarize(scenario.variants, RunExperiment(scenario.variants));
+  const auto summaries = testing::RunExtendedExample(
+      "acoustic_holdout.yaml",
+      "measurements: {max_order: 3}\nmethod: {restart_lost_track: true}\n"
+      "grid:\n  - {method.restart_lost_track: [false, true]}\n",
+      20);
   ASSERT_EQ(summaries.size(), 2u);
   EXPECT_LE(summaries[0].overall.diverged_runs, 8);  // without the restart: the moving box alone
   EXPECT_LE(summaries[1].overall.diverged_runs, 3);  // with it

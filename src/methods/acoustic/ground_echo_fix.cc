@@ -192,9 +192,12 @@ std::optional<GroundEchoFixer::SelectionFit> GroundEchoFixer::FitSelection(
     for (const int m : row_mic) in[static_cast<std::size_t>(m)] = residual_m[static_cast<std::size_t>(m)] <= gate_m;
     return in;
   };
-  // The smallest set: the fewest microphones whose rows cover the unknowns. A fix of no more
-  // microphones fits them exactly (or nearly) whatever their stamps are, and verifies nothing: at
-  // least one microphone beyond it must agree, whether or not the consensus search ran.
+  // The smallest set: the fewest microphones whose rows cover the unknowns, and with a solved
+  // offset at least three: two microphones and their floor mirrors are four receivers in one
+  // vertical plane, which do not fix a position and an offset (a twin across the plane, and
+  // ill-conditioned). A fix of no more microphones fits them exactly (or nearly) whatever their
+  // stamps are, and verifies nothing: at least one microphone beyond it must agree, whether or
+  // not the consensus search ran.
   std::vector<int> mics;
   std::vector<std::size_t> rows_per_mic;
   for (std::size_t m = 0; m < mics_m_.size(); ++m) {
@@ -208,6 +211,7 @@ std::optional<GroundEchoFixer::SelectionFit> GroundEchoFixer::FitSelection(
   for (std::size_t covered = 0; smallest_set < rows_per_mic.size() && covered < unknowns; ++smallest_set) {
     covered += rows_per_mic[smallest_set];
   }
+  if (offset_unknown) smallest_set = std::max<std::size_t>(smallest_set, std::min<std::size_t>(3, mics.size()));
   std::vector<bool> used(mics_m_.size(), false);
   for (const int m : row_mic) used[static_cast<std::size_t>(m)] = true;
   std::optional<estimation::SolverFix> fix = fit(used, last_m_);
@@ -224,10 +228,10 @@ std::optional<GroundEchoFixer::SelectionFit> GroundEchoFixer::FitSelection(
     // on the circle around their line as closely as the sender fits four true stamps, but the
     // other microphones' stamps do not follow that point. Up to C(12, 4) = 495 solves
     // for twelve microphones without echoes, only at emissions whose full fit fails the test.
-    // With echo rows the smallest set is two microphones, whose four receivers (each with its
-    // floor mirror) lie in one vertical plane: its fit has a mirror solution across that plane,
-    // and the one found depends on the start (the last fix); the consensus of the wrong one is
-    // the smaller.
+    // With echo rows and t_0 given the smallest set is two microphones, whose four receivers
+    // (each with its floor mirror) lie in one vertical plane: its fit has a mirror solution
+    // across that plane, and the one found depends on the start (the last fix); the consensus of
+    // the wrong one is the smaller. With the offset solved too it is three (above).
     const std::size_t k = smallest_set;
     std::vector<bool> pick(mics.size(), false);
     std::fill(pick.begin(), pick.begin() + static_cast<std::ptrdiff_t>(k), true);
@@ -288,7 +292,7 @@ std::optional<GroundEchoFixer::SelectionFit> GroundEchoFixer::FitSelection(
   if (static_cast<std::size_t>(std::count(used.begin(), used.end(), true)) <= smallest_set) {
     return std::nullopt;
   }
-  SelectionFit out{*fix, 0, 0.0, 0, 0};
+  SelectionFit out{*fix, 0, 0.0, 0, 0, 0};
   Vec3 sum_u = Vec3::Zero();  // the rows' unit vectors receiver -> sender
   for (std::size_t r = 0; r < receivers_m.size(); ++r) {
     const auto m = static_cast<std::size_t>(row_mic[r]);
@@ -301,6 +305,7 @@ std::optional<GroundEchoFixer::SelectionFit> GroundEchoFixer::FitSelection(
     sum_u += leg_m.normalized();
   }
   out.mics = static_cast<int>(std::count(used.begin(), used.end(), true));
+  out.support_rows = SupportAt(fix->position_m, t0_s ? c_mps_ * *t0_s : fix->offset_m, stamps_s).rows;
   // (H^T R^-1 H)^-1 H^T R^-1 1 with equal sigmas: the covariance times sum u_r / sigma^2.
   out.common_shift_gain = fix->covariance_m2.topLeftCorner<3, 3>() * sum_u / (sigma_m_ * sigma_m_);
   return out;
@@ -399,13 +404,21 @@ GroundEchoFix GroundEchoFixer::Process(const core::Epoch& epoch) {
   //      vote's count: only the clusters as large as the chosen one are tried.
   const bool absolute_ranges = options_.sending_time == "known";
   const auto& stamps = voted.back().mic_stamps_s;
+  // Ties between fixes of as many microphones, as in the consensus: the fix explaining more of
+  // the emission's stamps (a cluster of LOS / wall-echo pairs can fit a higher sender with a
+  // solved offset as closely as the LOS / floor-echo pairs fit the sender).
+  const auto better = [](const SelectionFit& a, const SelectionFit& b) {
+    if (a.mics != b.mics) return a.mics > b.mics;
+    if (a.support_rows != b.support_rows) return a.support_rows > b.support_rows;
+    return a.sum_sq_m2 < b.sum_sq_m2;
+  };
   std::optional<SelectionFit> best = FitSelection(chosen, stamps, t0_s);
   for (const auto& alternative : vote->alternatives) {
     const auto mics = std::count_if(alternative.begin(), alternative.end(), [](const auto& c) { return c.los_index >= 0; });
     // Most microphones first: none after this one can win.
     if ((!absolute_ranges && mics < heard) || (best && mics < best->mics)) break;
     auto fit = FitSelection(alternative, stamps, t0_s);
-    if (fit && (!best || fit->mics > best->mics || (fit->mics == best->mics && fit->sum_sq_m2 < best->sum_sq_m2))) {
+    if (fit && (!best || better(*fit, *best))) {
       best = std::move(fit);
     }
   }

@@ -31,14 +31,16 @@
 //     Newton) on the LOS rows |S - M_i| = c (T_L,i - t_0) and, with echoes, the floor-echo rows
 //     |S - M'_i| = c (T_r,i - t_0), from the last fix, else below the microphones' centroid.
 //     When a row lies beyond 3 sigma, the largest consensus of microphones (every smallest set
-//     with rows for the unknowns solved, the microphones within 3 sigma of its fix counted, ties
-//     to the fix explaining more of all the emission's stamps; Fischler & Bolles) is refitted,
-//     then the worst microphone beyond 3 sigma left out while rows remain; a fix of no more
-//     microphones than the smallest set fits them whatever their stamps and has no fix. The vote's other K
-//     clusters are fitted too (all with a known t_0, whose rows are absolute ranges; only those
-//     as large as the chosen one otherwise) and the fix keeping the most microphones wins. With
-//     LOS rows only, coplanar microphones fit the sender's mirror image in their plane as well:
-//     a fix above the ceiling restarts from that mirror; a fix below the floor is rejected.
+//     with rows for the unknowns solved, at least three with a solved offset; the microphones
+//     within 3 sigma of its fix counted, ties to the fix explaining more of all the emission's
+//     stamps; Fischler & Bolles) is refitted, then the worst microphone beyond 3 sigma left out
+//     while rows remain; a fix of no more microphones than the smallest set fits them whatever
+//     their stamps and is no fix. The vote's other K clusters are fitted too (all with a known
+//     t_0, whose rows are absolute ranges; only those as large as the chosen one otherwise) and
+//     the fix keeping the most microphones wins (ties: the one explaining more of the emission's
+//     stamps). With LOS rows only, coplanar microphones fit the sender's mirror image in their
+//     plane as well: a fix above the ceiling restarts from that mirror; a fix below the floor is
+//     rejected.
 //  5. Its CRLB and DOPs at the fix: (H^T R^-1 H)^-1 of the rows used, the range model (t_0 given)
 //     or the pseudo-range model (t_0 unknown); eval/dop.h computes the same from the geometry.
 //     The reported covariance adds, for a voted t_0, its own error (its least-squares sigma
@@ -152,6 +154,9 @@ class GroundEchoFixer {
     estimation::SolverFix fix;
     int mics = 0;
     double sum_sq_m2 = 0.0;
+    /// The stamps of the whole emission the fix explains (SupportAt): the tie-break between
+    /// fixes of as many microphones.
+    int support_rows = 0;
     int los_rows = 0;
     int echo_rows = 0;
     /// The fix's change per metre of a range offset common to every row (a sending time off by
