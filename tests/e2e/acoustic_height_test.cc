@@ -50,12 +50,12 @@ TEST(AcousticHeight, FloorEchoesPinTheHeight) {
   // heavy tail included: the wrong picks among the echoes are caught by the geometry.
   const double sigma_range_m = 0.044e-3 * 331.3 * std::sqrt(1.0 + 20.0 / 273.15);  // the example's sigma, 20 C
   EXPECT_LE(known.overall.height_error->rmse, 1.3 * sigma_range_m * known.overall.vdop->rms);
-  // The same bound with the sending time solved (TDOA), and on the LOS rows alone with it known
-  // or solved: one wrong fix a metre off exceeds it (three nearly collinear microphones and a
+  // The same bound with the sending time from the vote (a prior on a solved offset) or solved
+  // (TDOA), and on the LOS rows alone with it known or solved: one wrong fix a metre off exceeds it (three nearly collinear microphones and a
   // false alarm fit a point on a circle around their line, below the floor or beside the sender,
   // as closely as four true stamps fit the sender; two microphones with their floor mirrors
   // leave a position and an offset undetermined).
-  for (const auto* v : {&tdoa, &known_without, &tdoa_without}) {
+  for (const auto* v : {&estimated, &tdoa, &known_without, &tdoa_without}) {
     SCOPED_TRACE(v->name);
     EXPECT_LE(v->overall.height_error->rmse, 1.3 * sigma_range_m * v->overall.vdop->rms);
   }

@@ -24,6 +24,11 @@ const core::OptionsDescriptor<GroundEchoOptions>& GroundEchoOptionsDescriptor() 
                      "known: the records' emission time (a synchronised sender or a reference system); unknown: an "
                      "offset solved with the position (the TDOA variants, Sec. 8.3)."},
              {"estimated", "known", "unknown"});
+    d.Boolean(&O::vote_prior,
+              {.key = "vote_prior",
+               .doc = "With sending_time estimated: true, the vote's t_0 is a prior (its least-squares sigma) on "
+                      "an offset solved with the fix; false, the thesis's plug-in (Eq. 8.80 with t_0 fixed), whose "
+                      "t_0 error (noise gain 10-50 of Eq. 8.77) lands in the height."});
     d.Number(&O::vote_window_s,
              {.key = "vote_window_s",
               .unit = "s",
@@ -387,7 +392,10 @@ GroundEchoFix GroundEchoFixer::Process(const core::Epoch& epoch) {
 
   // 2. The sending time, relative to epoch.t_s.
   std::optional<double> t0_s;
-  if (options_.sending_time == "estimated") t0_s = vote->t0_s;
+  // With the vote as a prior the stamps are fitted with a solved offset (as "unknown"), and the
+  // vote's t_0 enters afterwards (step 5).
+  const bool vote_prior = options_.sending_time == "estimated" && options_.vote_prior;
+  if (options_.sending_time == "estimated" && !vote_prior) t0_s = vote->t0_s;
   if (options_.sending_time == "known") {
     if (!known_emission_s) return out;  // the records do not carry it: no fix
     t0_s = *known_emission_s - epoch.t_s;
@@ -439,6 +447,32 @@ GroundEchoFix GroundEchoFixer::Process(const core::Epoch& epoch) {
   const double hdop = std::sqrt(crlb_m2(0, 0) + crlb_m2(1, 1)) / sigma_m_;
   const double vdop = std::sqrt(crlb_m2(2, 2)) / sigma_m_;
   if (!std::isfinite(hdop) || !std::isfinite(vdop)) return out;
+  if (vote_prior) {
+    // 5'. The vote's t_0 as a prior on the solved offset b: one linear (Kalman) update of the fix
+    //     [x, b] with the pseudo-measurement b = c t_0 of variance (c sigma_t0)^2, which enters the
+    //     position through the fix's own covariance of x with b. The vote's t_0 carries the noise
+    //     gain of Eq. 8.77 (10-50 per stamp, reduced by the window's pooling); the offset solved
+    //     with floor echoes is far tighter, so the prior mostly checks it. The DOPs are those of
+    //     the range model (b given), as for the plug-in t_0.
+    const Eigen::Matrix4d& p_m2 = fix->covariance_m2;
+    const Vec3 cross_m2 = p_m2.block<3, 1>(0, 3);
+    const double innovation_m = c_mps_ * vote->t0_s - fix->offset_m;
+    const double innovation_var_m2 = p_m2(3, 3) + std::pow(c_mps_ * vote->t0_sigma_s, 2);
+    const Eigen::Matrix3d range_crlb_m2 = p_m2.topLeftCorner<3, 3>() - cross_m2 * cross_m2.transpose() / p_m2(3, 3);
+    const double prior_hdop = std::sqrt(range_crlb_m2(0, 0) + range_crlb_m2(1, 1)) / sigma_m_;
+    const double prior_vdop = std::sqrt(range_crlb_m2(2, 2)) / sigma_m_;
+    if (!std::isfinite(prior_hdop) || !std::isfinite(prior_vdop) || !(innovation_var_m2 > 0.0)) return out;
+    out.found = true;
+    out.los_rows = best->los_rows;
+    out.echo_rows = best->echo_rows;
+    out.position_m = fix->position_m + cross_m2 * innovation_m / innovation_var_m2;
+    out.covariance_m2 = p_m2.topLeftCorner<3, 3>() - cross_m2 * cross_m2.transpose() / innovation_var_m2;
+    out.hdop = prior_hdop;
+    out.vdop = prior_vdop;
+    out.sending_time_s = epoch.t_s + (fix->offset_m + p_m2(3, 3) * innovation_m / innovation_var_m2) / c_mps_;
+    last_m_ = out.position_m;
+    return out;
+  }
 
   out.found = true;
   out.los_rows = best->los_rows;

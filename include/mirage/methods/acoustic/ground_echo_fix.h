@@ -22,7 +22,8 @@
 //     the floor than the microphones are below the ceiling); and the rule that the LOS is each
 //     microphone's first arrival after t_0 (every pair of horizontal-plane or wall images, e.g.
 //     (ceiling echo, floor echo), satisfies Eq. 8.74-8.77 with the same t_0 and K).
-//  3. The sending time: "estimated", the vote's t_0 (Eq. 8.77-8.79); "known", the records'
+//  3. The sending time: "estimated", the vote's t_0 (Eq. 8.77-8.79), by default a prior on an
+//     offset solved with the fix (`vote_prior`, step 5), else plugged in; "known", the records'
 //     emission time (core::ToaStamps::emission_s: a synchronised sender or a reference system,
 //     the thesis's MoCap-derived t_s); "unknown", an offset b = c t_s solved with the position
 //     (pseudo-ranges, whose position fix equals the TDOA fix with the correlated covariance
@@ -43,8 +44,10 @@
 //     rejected.
 //  5. Its CRLB and DOPs at the fix: (H^T R^-1 H)^-1 of the rows used, the range model (t_0 given)
 //     or the pseudo-range model (t_0 unknown); eval/dop.h computes the same from the geometry.
-//     The reported covariance adds, for a voted t_0, its own error (its least-squares sigma
-//     through the fix's response to a common range offset): the CRLB does not contain it.
+//     The reported covariance adds, for a plugged-in voted t_0, its own error (its least-squares
+//     sigma through the fix's response to a common range offset): the CRLB does not contain it.
+//     With `vote_prior` the fix of the solved offset is updated by the vote's t_0 (a linear
+//     update with its least-squares sigma); its DOPs are those of the range model.
 // An emission without three microphones in the vote's cluster, or with fewer rows than unknowns,
 // or an unverified consensus, or a degenerate or unconverged solve, has no fix. Left open:
 // second-order echoes (floor-ceiling, wall-floor) form further consistent clusters that the
@@ -73,6 +76,9 @@ struct GroundEchoOptions {
   /// "estimated": t_0 from the vote (Eq. 8.77-8.79); "known": the records' emission time;
   /// "unknown": an offset solved with the position (the TDOA variants).
   std::string sending_time = "estimated";
+  /// With sending_time "estimated": true, the vote's t_0 is a prior (its least-squares sigma) on
+  /// an offset solved with the fix (step 5'); false, the thesis's plug-in (Eq. 8.80, t_0 fixed).
+  bool vote_prior = true;
   /// Longest span of emissions voted together (s), > 0. 1 s: ten emissions at the thesis's
   /// 0.1 s interval (its vote pools all emissions of a static test); shortened to
   /// stamp sigma / (2 clock_drift_ppm 1e-6) so that the clock's drift stays below half a sigma.
