@@ -164,13 +164,15 @@ std::optional<GroundEchoFixer::SelectionFit> GroundEchoFixer::FitSelection(
     if (rx_m.size() < unknowns) return std::nullopt;
     auto f = Solve(rx_m, z_m, offset_unknown, start_m, centroid_m);
     if (!f) return std::nullopt;
+    // A fix below the floor by more than 3 sigma (its own vertical sigma, at least a stamp's) is
+    // no sender: three nearly collinear microphones fit any point of a circle around their line.
+    const double sigma_z_m = std::max(sigma_m_, std::sqrt(std::max(f->covariance_m2(2, 2), 0.0)));
+    if (f->position_m.z() < floor_z_m_ - 3.0 * sigma_z_m) return std::nullopt;
     // Coplanar microphones (LOS rows only) fit the sender and its mirror image in their plane
     // alike: a fix above the ceiling, or higher than any sender, is that mirror; start again from
-    // below the microphones. A fix below the floor (by more than 3 sigma) is no sender either:
-    // three collinear microphones fit any point of a circle around their line.
+    // below the microphones.
     const auto implausible = [&](const Vec3& p) {
-      return (ceiling_z_m_ && p.z() > *ceiling_z_m_) || p.z() - floor_z_m_ > options_.max_sender_height_m ||
-             p.z() < floor_z_m_ - 3.0 * sigma_m_;
+      return (ceiling_z_m_ && p.z() > *ceiling_z_m_) || p.z() - floor_z_m_ > options_.max_sender_height_m;
     };
     if (implausible(f->position_m)) {
       Vec3 mirrored_m = f->position_m;
@@ -199,10 +201,12 @@ std::optional<GroundEchoFixer::SelectionFit> GroundEchoFixer::FitSelection(
   };
   // The smallest set: the fewest microphones whose rows cover the unknowns, and with a solved
   // offset at least three: two microphones and their floor mirrors are four receivers in one
-  // vertical plane, which do not fix a position and an offset (a twin across the plane, and
-  // ill-conditioned). A fix of no more microphones fits them exactly (or nearly) whatever their
-  // stamps are, and verifies nothing: at least one microphone beyond it must agree, whether or
-  // not the consensus search ran.
+  // vertical plane, whose position-and-offset fix has a twin across the plane and is
+  // ill-conditioned. A fix of no more microphones fits them exactly (or nearly) whatever their
+  // stamps are and verifies nothing: at least one microphone beyond it must agree, whether or
+  // not the consensus search ran. (Three microphones with echoes and a solved offset leave two
+  // redundant rows, but their wrong clusters fit too: in the example the three-microphone fixes
+  // were the largest errors; a fix then needs four.)
   std::vector<int> mics;
   std::vector<std::size_t> rows_per_mic;
   for (std::size_t m = 0; m < mics_m_.size(); ++m) {
@@ -320,23 +324,44 @@ GroundEchoFixer::StampSupport GroundEchoFixer::SupportAt(const Vec3& position_m,
                                                         const std::vector<std::vector<double>>& stamps_s) const {
   const double gate_m = 3.0 * sigma_m_;
   StampSupport out;
-  // Whether a stamp lies within the gate of range_m; the nearest one's miss is added.
-  const auto explained = [&](const std::vector<double>& list_s, double range_m) {
+  // The index of the stamp nearest to range_m within the gate, other than `taken` (-1: none); its
+  // miss is added.
+  const auto explained = [&](const std::vector<double>& list_s, double range_m, int taken) {
     double nearest_m = gate_m;
-    bool found = false;
-    for (const double t_s : list_s) {
-      const double miss_m = std::abs(c_mps_ * t_s - origin_m - range_m);
-      if (miss_m <= nearest_m) nearest_m = miss_m, found = true;
+    int index = -1;
+    for (std::size_t i = 0; i < list_s.size(); ++i) {
+      const double miss_m = std::abs(c_mps_ * list_s[i] - origin_m - range_m);
+      if (static_cast<int>(i) != taken && miss_m <= nearest_m) nearest_m = miss_m, index = static_cast<int>(i);
     }
-    if (found) out.rows += 1, out.sum_sq_m2 += nearest_m * nearest_m;
-    return found;
+    if (index >= 0) out.rows += 1, out.sum_sq_m2 += nearest_m * nearest_m;
+    return index;
   };
   for (std::size_t m = 0; m < mics_m_.size(); ++m) {
     const Vec3 mirrored_m(mics_m_[m].x(), mics_m_[m].y(), 2.0 * floor_z_m_ - mics_m_[m].z());
-    if (explained(stamps_s[m], (position_m - mics_m_[m]).norm())) {
-      explained(stamps_s[m], (position_m - mirrored_m).norm());
-    }
+    const int los = explained(stamps_s[m], (position_m - mics_m_[m]).norm(), -1);
+    if (los >= 0) explained(stamps_s[m], (position_m - mirrored_m).norm(), los);
   }
+  return out;
+}
+
+OffsetPriorUpdate UpdateWithOffsetPrior(const Eigen::Matrix4d& covariance_m2, double offset_m, double prior_m,
+                                        double prior_sigma_m) {
+  OffsetPriorUpdate out;
+  const Vec3 cross_m2 = covariance_m2.block<3, 1>(0, 3);
+  const double offset_var_m2 = covariance_m2(3, 3);
+  out.range_crlb_m2 = covariance_m2.topLeftCorner<3, 3>() - cross_m2 * cross_m2.transpose() / offset_var_m2;
+  out.covariance_m2 = covariance_m2.topLeftCorner<3, 3>();
+  out.offset_m = offset_m;
+  const double innovation_m = prior_m - offset_m;
+  const double innovation_var_m2 = offset_var_m2 + prior_sigma_m * prior_sigma_m;
+  if (!(prior_sigma_m > 0.0) || !(innovation_var_m2 > 0.0) ||
+      innovation_m * innovation_m > 9.0 * innovation_var_m2) {
+    return out;  // no prior, or one that contradicts the stamps
+  }
+  out.used = true;
+  out.shift_m = cross_m2 * innovation_m / innovation_var_m2;
+  out.covariance_m2 -= cross_m2 * cross_m2.transpose() / innovation_var_m2;
+  out.offset_m = offset_m + offset_var_m2 * innovation_m / innovation_var_m2;
   return out;
 }
 
@@ -405,7 +430,8 @@ GroundEchoFix GroundEchoFixer::Process(const core::Epoch& epoch) {
   //      echo share K like the LOS and the floor echo, and the vote's tie-break between clusters
   //      of as many microphones (the spread of K) is weak; the geometry decides (Fischler &
   //      Bolles's verification step): the fix keeping the most microphones within 3 sigma wins,
-  //      then the smaller sum of squared residuals. With a known t_0 every row is an absolute
+  //      then the one explaining more of the emission's stamps, then the smaller sum of squared
+  //      misses. With a known t_0 every row is an absolute
   //      range, independent of the selection, so any cluster is verified on its own and all are
   //      tried. With t_0 from the vote (derived from the chosen cluster) or solved with the fix
   //      (pseudo-ranges), a smaller cluster fits its own geometry too easily to overrule the
@@ -440,7 +466,7 @@ GroundEchoFix GroundEchoFixer::Process(const core::Epoch& epoch) {
   // The reported covariance adds the voted t_0's own error (its least-squares sigma over the
   // window), which enters every row alike; the DOPs stay those of the geometry (Eq. 8.10-8.12).
   Eigen::Matrix3d covariance_m2 = crlb_m2;
-  if (options_.sending_time == "estimated") {
+  if (options_.sending_time == "estimated" && !vote_prior) {
     const Vec3 gain_m = best->common_shift_gain * c_mps_ * vote->t0_sigma_s;
     covariance_m2 += gain_m * gain_m.transpose();
   }
@@ -448,28 +474,28 @@ GroundEchoFix GroundEchoFixer::Process(const core::Epoch& epoch) {
   const double vdop = std::sqrt(crlb_m2(2, 2)) / sigma_m_;
   if (!std::isfinite(hdop) || !std::isfinite(vdop)) return out;
   if (vote_prior) {
-    // 5'. The vote's t_0 as a prior on the solved offset b: one linear (Kalman) update of the fix
+    // 5. The vote's t_0 as a prior on the solved offset b: one linear (Kalman) update of the fix
     //     [x, b] with the pseudo-measurement b = c t_0 of variance (c sigma_t0)^2, which enters the
     //     position through the fix's own covariance of x with b. The vote's t_0 carries the noise
     //     gain of Eq. 8.77 (10-50 per stamp, reduced by the window's pooling); the offset solved
-    //     with floor echoes is far tighter, so the prior mostly checks it. The DOPs are those of
-    //     the range model (b given), as for the plug-in t_0.
-    const Eigen::Matrix4d& p_m2 = fix->covariance_m2;
-    const Vec3 cross_m2 = p_m2.block<3, 1>(0, 3);
-    const double innovation_m = c_mps_ * vote->t0_s - fix->offset_m;
-    const double innovation_var_m2 = p_m2(3, 3) + std::pow(c_mps_ * vote->t0_sigma_s, 2);
-    const Eigen::Matrix3d range_crlb_m2 = p_m2.topLeftCorner<3, 3>() - cross_m2 * cross_m2.transpose() / p_m2(3, 3);
-    const double prior_hdop = std::sqrt(range_crlb_m2(0, 0) + range_crlb_m2(1, 1)) / sigma_m_;
-    const double prior_vdop = std::sqrt(range_crlb_m2(2, 2)) / sigma_m_;
-    if (!std::isfinite(prior_hdop) || !std::isfinite(prior_vdop) || !(innovation_var_m2 > 0.0)) return out;
+    //     with floor echoes is far tighter, so the prior mostly checks it. The vote uses these
+    //     stamps too (and the window's earlier ones), so the update counts them twice: the
+    //     reported covariance is somewhat tight without echoes. A prior more than 3 sigma from the
+    //     solved offset, or without a sigma (the vote's refinement failed), is left out: the
+    //     stamps' fix stands. The DOPs are those of the range model (b given), as for the plug-in.
+    const OffsetPriorUpdate update =
+        UpdateWithOffsetPrior(fix->covariance_m2, fix->offset_m, c_mps_ * vote->t0_s, c_mps_ * vote->t0_sigma_s);
+    const double prior_hdop = std::sqrt(update.range_crlb_m2(0, 0) + update.range_crlb_m2(1, 1)) / sigma_m_;
+    const double prior_vdop = std::sqrt(update.range_crlb_m2(2, 2)) / sigma_m_;
+    if (!std::isfinite(prior_hdop) || !std::isfinite(prior_vdop)) return out;
     out.found = true;
     out.los_rows = best->los_rows;
     out.echo_rows = best->echo_rows;
-    out.position_m = fix->position_m + cross_m2 * innovation_m / innovation_var_m2;
-    out.covariance_m2 = p_m2.topLeftCorner<3, 3>() - cross_m2 * cross_m2.transpose() / innovation_var_m2;
+    out.position_m = fix->position_m + update.shift_m;
+    out.covariance_m2 = update.covariance_m2;
     out.hdop = prior_hdop;
     out.vdop = prior_vdop;
-    out.sending_time_s = epoch.t_s + (fix->offset_m + p_m2(3, 3) * innovation_m / innovation_var_m2) / c_mps_;
+    out.sending_time_s = epoch.t_s + update.offset_m / c_mps_;
     last_m_ = out.position_m;
     return out;
   }

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <vector>
 
+#include <Eigen/LU>
 #include <gtest/gtest.h>
 
 #include "mirage/core/rng.h"
@@ -75,6 +76,55 @@ TEST(GroundEchoFix, EverySendingTimeVariantRecoversTheSenderFromNoiseFreeStamps)
       EXPECT_NEAR(*fix.sending_time_s, 10.3, 1e-8) << sending_time;
     }
   }
+  // The voted t_0 as a prior reports the DOPs of the range model (t_0 given): those of "known"
+  // on the same rows, not the larger ones of the pseudo-range model without echoes.
+  for (const bool echoes : {true, false}) {
+    GroundEchoFixer prior = Fixer("estimated", echoes);
+    GroundEchoFixer known = Fixer("known", echoes);
+    core::Rng rng_prior(3), rng_known(3);
+    GroundEchoFix with_prior, with_known;
+    for (int k = 0; k < 4; ++k) {
+      with_prior = prior.Process(Emission(CeilingMics(), sender, 10.0 + k * kInterval, 0.0, 0.0, rng_prior, true));
+      with_known = known.Process(Emission(CeilingMics(), sender, 10.0 + k * kInterval, 0.0, 0.0, rng_known, true));
+    }
+    ASSERT_TRUE(with_prior.found && with_known.found);
+    EXPECT_NEAR(with_prior.vdop, with_known.vdop, 1e-6 * with_known.vdop) << "echoes " << echoes;
+    EXPECT_NEAR(with_prior.hdop, with_known.hdop, 1e-6 * with_known.hdop) << "echoes " << echoes;
+  }
+}
+
+// The prior's update equals the information form: (P^-1 + e_b e_b^T / s^2)^-1 and its mean; the
+// range model's covariance is the inverse of P^-1's position block; a prior beyond 3 sigma of the
+// innovation, or without a sigma, is left out.
+TEST(GroundEchoFix, TheOffsetPriorUpdateIsTheInformationForm) {
+  Eigen::Matrix4d a;
+  a << 0.3, 0.1, -0.2, 0.4, 0.0, 0.5, 0.1, -0.3, 0.2, -0.1, 0.7, 0.6, -0.1, 0.3, 0.2, 0.9;
+  const Eigen::Matrix4d covariance_m2 = 1e-4 * (a * a.transpose() + 0.1 * Eigen::Matrix4d::Identity());
+  const double offset_m = 2.0, prior_sigma_m = 0.01;
+  const double prior_m = offset_m + 1.5 * std::sqrt(covariance_m2(3, 3) + prior_sigma_m * prior_sigma_m);
+  const OffsetPriorUpdate update = UpdateWithOffsetPrior(covariance_m2, offset_m, prior_m, prior_sigma_m);
+  ASSERT_TRUE(update.used);
+  Eigen::Matrix4d information = covariance_m2.inverse();
+  const Eigen::Matrix4d posterior_m2 = (information + Eigen::Vector4d::UnitW() * Eigen::Vector4d::UnitW().transpose() /
+                                                          (prior_sigma_m * prior_sigma_m))
+                                           .inverse();
+  // Mean: P_post (P^-1 [0, b] + e_b prior / s^2), relative to the fix's position.
+  const Eigen::Vector4d state(0.0, 0.0, 0.0, offset_m);
+  const Eigen::Vector4d mean = posterior_m2 * (information * state + Eigen::Vector4d::UnitW() * prior_m /
+                                                                         (prior_sigma_m * prior_sigma_m));
+  EXPECT_LT((update.shift_m - mean.head<3>()).norm(), 1e-9);
+  EXPECT_NEAR(update.offset_m, mean(3), 1e-9);
+  EXPECT_LT((update.covariance_m2 - posterior_m2.topLeftCorner<3, 3>()).norm(), 1e-12);
+  EXPECT_LT((update.range_crlb_m2 - information.topLeftCorner<3, 3>().inverse()).norm(), 1e-12);
+  // Beyond 3 sigma, or without a sigma: the fix stands.
+  const double far_m = offset_m + 3.5 * std::sqrt(covariance_m2(3, 3) + prior_sigma_m * prior_sigma_m);
+  for (const OffsetPriorUpdate& left_out : {UpdateWithOffsetPrior(covariance_m2, offset_m, far_m, prior_sigma_m),
+                                            UpdateWithOffsetPrior(covariance_m2, offset_m, prior_m, 0.0)}) {
+    EXPECT_FALSE(left_out.used);
+    EXPECT_EQ(left_out.shift_m, Vec3::Zero());
+    EXPECT_EQ(left_out.offset_m, offset_m);
+    EXPECT_LT((left_out.covariance_m2 - covariance_m2.topLeftCorner<3, 3>()).norm(), 1e-15);
+  }
 }
 
 TEST(GroundEchoFix, TheFloorHeightPlacesTheMirroredMicrophones) {
@@ -100,10 +150,10 @@ TEST(GroundEchoFix, AFalseAlarmBeforeTheLineOfSightCostsOnlyItsMicrophone) {
 }
 
 // The smallest set fits its rows whatever its stamps are: three microphones' LOS ranges with a
-// known sending time, four with it solved. Such a fix verifies nothing; one microphone more that
-// agrees verifies it. (With floor echoes and a solved offset the smallest set is three
-// microphones, but the vote needs four to find the sending time: the e2e test
-// AcousticHeight.TdoaWithFloorEchoesStaysWithinItsBoundInEveryRun covers that rule.)
+// known sending time, four with it solved; with floor echoes and a solved offset three (two
+// microphones and their mirrors lie in one vertical plane). Such a fix verifies nothing; one
+// microphone more that agrees verifies it. The first emissions are heard by all microphones: the
+// vote's full search needs four, and the sending time it finds is then tracked.
 TEST(GroundEchoFix, AFixOfTheSmallestSetAloneIsNoFix) {
   const Vec3 sender(7.0, 4.0, 1.2);
   struct Case {
@@ -111,14 +161,15 @@ TEST(GroundEchoFix, AFixOfTheSmallestSetAloneIsNoFix) {
     bool echoes;
     std::size_t smallest;
   };
-  for (const Case& c : {Case{"known", false, 3}, Case{"unknown", false, 4}}) {
+  for (const Case& c : {Case{"known", false, 3}, Case{"unknown", false, 4}, Case{"unknown", true, 3},
+                        Case{"estimated", true, 3}}) {
     for (const std::size_t heard : {c.smallest, c.smallest + 1}) {
       GroundEchoFixer fixer = Fixer(c.sending_time, c.echoes);
       core::Rng rng(8);
       GroundEchoFix fix;
       for (int k = 0; k < 3; ++k) {
         core::Epoch epoch = Emission(CeilingMics(), sender, 1.0 + k * kInterval, 0.0, 0.0, rng, true);
-        epoch.toas.resize(heard);
+        if (k == 2) epoch.toas.resize(heard);
         fix = fixer.Process(epoch);
       }
       SCOPED_TRACE(c.sending_time + (c.echoes ? " with" : " without") + " echoes, " + std::to_string(heard) +

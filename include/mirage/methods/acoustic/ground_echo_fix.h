@@ -40,8 +40,8 @@
 //     t_0, whose rows are absolute ranges; only those as large as the chosen one otherwise) and
 //     the fix keeping the most microphones wins (ties: the one explaining more of the emission's
 //     stamps). With LOS rows only, coplanar microphones fit the sender's mirror image in their
-//     plane as well: a fix above the ceiling restarts from that mirror; a fix below the floor is
-//     rejected.
+//     plane as well: a fix above the ceiling restarts from that mirror; a fix more than 3 of its
+//     vertical sigmas below the floor is no fix.
 //  5. Its CRLB and DOPs at the fix: (H^T R^-1 H)^-1 of the rows used, the range model (t_0 given)
 //     or the pseudo-range model (t_0 unknown); eval/dop.h computes the same from the geometry.
 //     The reported covariance adds, for a plugged-in voted t_0, its own error (its least-squares
@@ -49,7 +49,7 @@
 //     With `vote_prior` the fix of the solved offset is updated by the vote's t_0 (a linear
 //     update with its least-squares sigma); its DOPs are those of the range model.
 // An emission without three microphones in the vote's cluster, or with fewer rows than unknowns,
-// or an unverified consensus, or a degenerate or unconverged solve, has no fix. Left open:
+// or an unverified fix, or a degenerate or unconverged solve, has no fix. Left open:
 // second-order echoes (floor-ceiling, wall-floor) form further consistent clusters that the
 // first-arrival rule does not remove (docs/results/acoustic.md: order 2 in the example's last
 // grid line).
@@ -77,7 +77,8 @@ struct GroundEchoOptions {
   /// "unknown": an offset solved with the position (the TDOA variants).
   std::string sending_time = "estimated";
   /// With sending_time "estimated": true, the vote's t_0 is a prior (its least-squares sigma) on
-  /// an offset solved with the fix (step 5'); false, the thesis's plug-in (Eq. 8.80, t_0 fixed).
+  /// an offset solved with the fix (step 5); false, the thesis's plug-in (Eq. 8.80, t_0 fixed).
+  /// true fits as "unknown" does: a fix with echoes then needs four microphones.
   bool vote_prior = true;
   /// Longest span of emissions voted together (s), > 0. 1 s: ten emissions at the thesis's
   /// 0.1 s interval (its vote pools all emissions of a static test); shortened to
@@ -107,6 +108,22 @@ struct GroundEchoFix {
   /// solved offset over c); empty without a fix.
   std::optional<double> sending_time_s;
 };
+
+/// A fix of [x, y, z, b] (b the offset, m) updated by a prior on b (step 5).
+struct OffsetPriorUpdate {
+  bool used = false;                                 ///< false: no prior, or one beyond 3 sigma
+  Vec3 shift_m = Vec3::Zero();                       ///< added to the fix's position
+  Eigen::Matrix3d covariance_m2 = Eigen::Matrix3d::Zero();   ///< the position's, after the update
+  double offset_m = 0.0;                             ///< b after the update
+  Eigen::Matrix3d range_crlb_m2 = Eigen::Matrix3d::Zero();   ///< the position's with b given
+};
+
+/// The linear (Kalman) update of a fix [x, b] with covariance `covariance_m2` by the
+/// pseudo-measurement b = prior_m of standard deviation prior_sigma_m. The prior is left out when
+/// its sigma is not positive or it lies beyond 3 sigma of the innovation. range_crlb_m2 is the
+/// position's covariance with b known (the Schur complement).
+OffsetPriorUpdate UpdateWithOffsetPrior(const Eigen::Matrix4d& covariance_m2, double offset_m, double prior_m,
+                                        double prior_sigma_m);
 
 /// The per-emission floor-echo fixer of one run: keeps the window of recent emissions for the vote.
 class GroundEchoFixer {
