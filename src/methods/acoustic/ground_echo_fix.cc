@@ -458,57 +458,48 @@ GroundEchoFix GroundEchoFixer::Process(const core::Epoch& epoch) {
   }
   if (!best) return out;
   const estimation::SolverFix* fix = &best->fix;
-  const bool offset_unknown = !t0_s.has_value();
   // The DOPs of the rows used (Eq. 8.10-8.12): the solver's covariance is (H^T R^-1 H)^-1 at the
   // fix, the CRLB of the range model (t_0 given) or of the pseudo-range model (t_0 unknown: the
   // position block of [x, y, z, b]), each row with sigma.
-  const Eigen::Matrix3d crlb_m2 = fix->covariance_m2.topLeftCorner<3, 3>();
-  // The reported covariance adds the voted t_0's own error (its least-squares sigma over the
-  // window), which enters every row alike; the DOPs stay those of the geometry (Eq. 8.10-8.12).
-  Eigen::Matrix3d covariance_m2 = crlb_m2;
-  if (options_.sending_time == "estimated" && !vote_prior) {
+  Eigen::Matrix3d dop_crlb_m2 = fix->covariance_m2.topLeftCorner<3, 3>();
+  Eigen::Matrix3d covariance_m2 = dop_crlb_m2;
+  Vec3 position_m = fix->position_m;
+  double sending_time_s = epoch.t_s + (t0_s ? *t0_s : fix->offset_m / c_mps_);
+  if (vote_prior) {
+    // 5. The vote's t_0 as a prior on the solved offset b: one linear (Kalman) update of the fix
+    //    [x, b] with the pseudo-measurement b = c t_0 of variance (c sigma_t0)^2, which enters the
+    //    position through the fix's own covariance of x with b. The vote's t_0 carries the noise
+    //    gain of Eq. 8.77 (10-50 per stamp, reduced by the window's pooling); the offset solved
+    //    with floor echoes is far tighter, so the prior mostly checks it. The vote uses these
+    //    stamps too (and the window's earlier ones), so the update counts them twice: the
+    //    reported covariance is somewhat tight without echoes. A prior more than 3 sigma from the
+    //    solved offset, or without a sigma (the vote's refinement failed), is left out: the
+    //    stamps' fix stands. The DOPs are those of the range model (b given), as for the plug-in.
+    const OffsetPriorUpdate update =
+        UpdateWithOffsetPrior(fix->covariance_m2, fix->offset_m, c_mps_ * vote->t0_s, c_mps_ * vote->t0_sigma_s);
+    dop_crlb_m2 = update.range_crlb_m2;
+    covariance_m2 = update.covariance_m2;
+    position_m += update.shift_m;
+    sending_time_s = epoch.t_s + update.offset_m / c_mps_;
+  } else if (options_.sending_time == "estimated") {
+    // The plugged-in t_0's own error (its least-squares sigma over the window) enters every row
+    // alike: the reported covariance adds it; the DOPs stay those of the geometry.
     const Vec3 gain_m = best->common_shift_gain * c_mps_ * vote->t0_sigma_s;
     covariance_m2 += gain_m * gain_m.transpose();
   }
-  const double hdop = std::sqrt(crlb_m2(0, 0) + crlb_m2(1, 1)) / sigma_m_;
-  const double vdop = std::sqrt(crlb_m2(2, 2)) / sigma_m_;
+  const double hdop = std::sqrt(dop_crlb_m2(0, 0) + dop_crlb_m2(1, 1)) / sigma_m_;
+  const double vdop = std::sqrt(dop_crlb_m2(2, 2)) / sigma_m_;
   if (!std::isfinite(hdop) || !std::isfinite(vdop)) return out;
-  if (vote_prior) {
-    // 5. The vote's t_0 as a prior on the solved offset b: one linear (Kalman) update of the fix
-    //     [x, b] with the pseudo-measurement b = c t_0 of variance (c sigma_t0)^2, which enters the
-    //     position through the fix's own covariance of x with b. The vote's t_0 carries the noise
-    //     gain of Eq. 8.77 (10-50 per stamp, reduced by the window's pooling); the offset solved
-    //     with floor echoes is far tighter, so the prior mostly checks it. The vote uses these
-    //     stamps too (and the window's earlier ones), so the update counts them twice: the
-    //     reported covariance is somewhat tight without echoes. A prior more than 3 sigma from the
-    //     solved offset, or without a sigma (the vote's refinement failed), is left out: the
-    //     stamps' fix stands. The DOPs are those of the range model (b given), as for the plug-in.
-    const OffsetPriorUpdate update =
-        UpdateWithOffsetPrior(fix->covariance_m2, fix->offset_m, c_mps_ * vote->t0_s, c_mps_ * vote->t0_sigma_s);
-    const double prior_hdop = std::sqrt(update.range_crlb_m2(0, 0) + update.range_crlb_m2(1, 1)) / sigma_m_;
-    const double prior_vdop = std::sqrt(update.range_crlb_m2(2, 2)) / sigma_m_;
-    if (!std::isfinite(prior_hdop) || !std::isfinite(prior_vdop)) return out;
-    out.found = true;
-    out.los_rows = best->los_rows;
-    out.echo_rows = best->echo_rows;
-    out.position_m = fix->position_m + update.shift_m;
-    out.covariance_m2 = update.covariance_m2;
-    out.hdop = prior_hdop;
-    out.vdop = prior_vdop;
-    out.sending_time_s = epoch.t_s + update.offset_m / c_mps_;
-    last_m_ = out.position_m;
-    return out;
-  }
 
   out.found = true;
   out.los_rows = best->los_rows;
   out.echo_rows = best->echo_rows;
-  out.position_m = fix->position_m;
+  out.position_m = position_m;
   out.covariance_m2 = covariance_m2;
   out.hdop = hdop;
   out.vdop = vdop;
-  out.sending_time_s = epoch.t_s + (offset_unknown ? fix->offset_m / c_mps_ : *t0_s);
-  last_m_ = fix->position_m;
+  out.sending_time_s = sending_time_s;
+  last_m_ = position_m;
   return out;
 }
 
