@@ -305,6 +305,27 @@ TEST(VoteSendingTimeAt, FromAHypothesisNearT0FindsTheExactT0AndLabels) {
   EXPECT_FALSE(VoteSendingTimeAt(s.emissions, sim.t0_s + 1.0, SendingTimeVoteOptions{}).has_value());
 }
 
+// One emission whose stamps are all late by the same delay (a sender that emitted off its
+// schedule) is consistent in itself: its K cluster forms at its own t_0 and K_e absorbs it, so
+// only its t_0 disagrees with the other emissions'. The refinement leaves it out (its t_0 more
+// than 3 sigma from the others'): t_0 stays exact; kept, it would pull t_0 by its share.
+TEST(VoteSendingTimeAt, AnEmissionOffTheScheduleIsLeftOutOfTheSendingTime) {
+  core::Rng rng(17);
+  SimOptions sim;
+  const std::vector<Vec3> mics = NineMics(false);
+  Synthetic s = Simulate(mics, Senders(), sim, rng);
+  SendingTimeVoteOptions options;
+  for (const Vec3& m : mics) options.mic_heights_m.push_back(m.z());
+  const double late_s = 3e-3;
+  for (auto& list : s.emissions[2].mic_stamps_s) {
+    for (double& t : list) t += late_s;
+  }
+  const auto vote = VoteSendingTimeAt(s.emissions, sim.t0_s, options);
+  ASSERT_TRUE(vote.has_value());
+  EXPECT_NEAR(vote->t0_s, sim.t0_s, 1e-9);
+  EXPECT_GT(vote->t0_sigma_s, 0.0);
+}
+
 TEST(VoteSendingTime, FirstArrivalRuleKeepsTheLosAmongWallImagePairs) {
   // Wall echoes with their own floor echoes (images in vertical walls share t_0 and K): without
   // the rule a microphone may pair a wall echo with its floor echo; with it, the LOS is the first

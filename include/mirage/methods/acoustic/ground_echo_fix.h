@@ -47,7 +47,8 @@
 //     The reported covariance adds, for a plugged-in voted t_0, its own error (its least-squares
 //     sigma through the fix's response to a common range offset): the CRLB does not contain it.
 //     With `vote_prior` the fix of the solved offset is updated by the vote's t_0 (a linear
-//     update with its least-squares sigma); its DOPs are those of the range model.
+//     update with the vote's robust sigma); its DOPs are those of the information used, the
+//     rows plus the vote's t_0 (between the range and the pseudo-range model's).
 // An emission without three microphones in the vote's cluster, or with fewer rows than unknowns,
 // or an unverified fix, or a degenerate or unconverged solve, has no fix. Left open:
 // second-order echoes (floor-ceiling, wall-floor) form further consistent clusters that the
@@ -76,8 +77,9 @@ struct GroundEchoOptions {
   /// "estimated": t_0 from the vote (Eq. 8.77-8.79); "known": the records' emission time;
   /// "unknown": an offset solved with the position (the TDOA variants).
   std::string sending_time = "estimated";
-  /// With sending_time "estimated": true, the vote's t_0 is a prior (its least-squares sigma) on
-  /// an offset solved with the fix (step 5); false, the thesis's plug-in (Eq. 8.80, t_0 fixed).
+  /// With sending_time "estimated": true, the vote's t_0 is a prior (its robust sigma) on an
+  /// offset solved with the fix, the DOPs those of the rows plus the prior (step 5); false, the
+  /// thesis's plug-in (Eq. 8.80, t_0 fixed) with the range model's DOPs.
   /// true fits as "unknown" does: a fix with echoes then needs four microphones.
   bool vote_prior = true;
   /// Longest span of emissions voted together (s), > 0. 1 s: ten emissions at the thesis's
@@ -115,13 +117,11 @@ struct OffsetPriorUpdate {
   Vec3 shift_m = Vec3::Zero();                       ///< added to the fix's position
   Eigen::Matrix3d covariance_m2 = Eigen::Matrix3d::Zero();   ///< the position's, after the update
   double offset_m = 0.0;                             ///< b after the update
-  Eigen::Matrix3d range_crlb_m2 = Eigen::Matrix3d::Zero();   ///< the position's with b given
 };
 
 /// The linear (Kalman) update of a fix [x, b] with covariance `covariance_m2` by the
 /// pseudo-measurement b = prior_m of standard deviation prior_sigma_m. The prior is left out when
-/// its sigma is not positive or it lies beyond 3 sigma of the innovation. range_crlb_m2 is the
-/// position's covariance with b known (the Schur complement).
+/// its sigma is not positive or it lies beyond 3 sigma of the innovation.
 OffsetPriorUpdate UpdateWithOffsetPrior(const Eigen::Matrix4d& covariance_m2, double offset_m, double prior_m,
                                         double prior_sigma_m);
 
