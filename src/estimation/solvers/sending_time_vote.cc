@@ -6,7 +6,6 @@
 #include <limits>
 #include <utility>
 
-
 namespace mirage::estimation {
 namespace {
 
@@ -326,7 +325,8 @@ struct SendingTimeRow {
 ///    or a heavy-tail stamp inside the cluster's K tolerance, which is 3 sigma about a noisy
 ///    centre), while its emission keeps at least two rows;
 ///  - an emission whose own t_0 differs from the others' by more than 3 sigma of the difference
-///    (a wrong cluster consistent in itself: K_e absorbs it, only t_0 shows it).
+///    (a wrong cluster consistent in itself: K_e absorbs it, only t_0 shows it), when at least
+///    three emissions have one.
 /// The sigma is scaled by the Birge ratio sqrt(chi^2 / (E - 1)) of the emissions' estimates when
 /// above one (the scatter the stamps' sigma does not explain). Without these steps the vote's
 /// t_0 missed the truth by 3.2 of its sigmas (rms) in the ch. 8 example; see
@@ -380,8 +380,9 @@ std::optional<std::pair<double, double>> RefineSendingTime(const PairTable& pair
       const Estimate& est = estimates[e];
       if (!(est.info > 0.0)) continue;
       chi2 += est.info * (est.t0 - t0) * (est.t0 - t0);
+      // Two emissions that disagree cannot tell which is wrong: the test needs three.
       const double rest_info = sum_info - est.info;
-      if (rest_info > 0.0) {
+      if (used >= 3 && rest_info > 0.0) {
         const double rest = (sum_weighted - est.info * est.t0) / rest_info;
         const double z2 = (est.t0 - rest) * (est.t0 - rest) / (1.0 / est.info + 1.0 / rest_info);
         if (z2 > worst_z2) worst_z2 = z2, worst_e = e, worst_row = -1;
