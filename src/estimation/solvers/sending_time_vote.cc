@@ -321,9 +321,13 @@ struct SendingTimeRow {
 /// weighted mean, the same as the joint least squares of t_0 and every K_e. Then, while the
 /// worst of them exceeds 3 sigma, one is left out and the mean recomputed (the selection itself
 /// is unchanged):
-///  - a row whose miss of its emission's fit at the window's t_0 exceeds 3 sigma (a false alarm
-///    or a heavy-tail stamp inside the cluster's K tolerance, which is 3 sigma about a noisy
-///    centre), while its emission keeps at least two rows;
+///  - a row whose miss at the window's t_0 (with its emission's K_e at that t_0) exceeds 3 of its
+///    sigmas (a false alarm or a heavy-tail stamp inside the cluster's K tolerance, which is 3
+///    sigma about a noisy centre), while its emission keeps at least two rows. The miss is not
+///    corrected for the row's leverage (a threshold nearer 3.7 sigma with three rows), and an
+///    emission's disagreement with the others' t_0 enters it (the emission test, which needs
+///    three emissions, fires first when that dominates). Measured on the ch. 8 example without
+///    echoes: height RMSE 0.059 m without this test, 0.058 m with it;
 ///  - an emission whose own t_0 differs from the others' by more than 3 sigma of the difference
 ///    (a wrong cluster consistent in itself: K_e absorbs it, only t_0 shows it), when at least
 ///    three emissions have one.
@@ -365,7 +369,8 @@ std::optional<std::pair<double, double>> RefineSendingTime(const PairTable& pair
         say += r.w * r.a * r.y, sby += r.w * r.b * r.y;
       }
       const double info = saa - sab * sab / sbb;
-      if (!(info > 0.0)) continue;  // the delays do not vary with the heights: no t_0
+      // The delays do not vary with the heights (or only by rounding): no t_0.
+      if (!(info > 1e-12 * saa)) continue;
       estimates[e] = {info, (say - sab * sby / sbb) / info, sbb, sab, sby};
       sum_info += info, sum_weighted += info * estimates[e].t0;
       ++used;

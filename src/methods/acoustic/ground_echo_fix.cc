@@ -486,7 +486,7 @@ GroundEchoFix GroundEchoFixer::Process(const core::Epoch& epoch) {
     position_m += update.shift_m;
     sending_time_s = epoch.t_s + update.offset_m / c_mps_;
   } else if (options_.sending_time == "estimated") {
-    // The plugged-in t_0's own error (its least-squares sigma over the window) enters every row
+    // The plugged-in t_0's own error (the vote's sigma over the window) enters every row
     // alike: the reported covariance adds it; the DOPs stay those of the geometry.
     const Vec3 gain_m = best->common_shift_gain * c_mps_ * vote->t0_sigma_s;
     covariance_m2 += gain_m * gain_m.transpose();

@@ -247,7 +247,7 @@ TEST(GroundEchoFix, FloorEchoesPinTheHeightWithinItsBound) {
 }
 
 // The voted sending time plugged in (the thesis's Eq. 8.80) has its own error, common to every
-// row; the reported covariance carries it (its least-squares sigma through the fix's response to
+// row; the reported covariance carries it (the vote's sigma through the fix's response to
 // a common range offset), so that the height error over the reported sigma stays near 1. Without
 // the floor echoes the height absorbs the t_0 error (Fig. 8.10): the CRLB alone would understate
 // it several times (measured on this walk: 1.04 without echoes and 1.15 with them; 8.7 and 1.65

@@ -167,7 +167,8 @@ struct SendingTimeVote {
   /// kThesisPile: the pile's candidates; kConsensus: the inlier microphones over all emissions.
   int pile_size = 0;
   /// kConsensus: the standard deviation of t0_s from the robust least squares, scaled by the
-  /// emissions' scatter when it exceeds the stamps' sigma (s); 0 for kThesisPile.
+  /// emissions' scatter when it exceeds the stamps' sigma (s); 0 for kThesisPile. An emission or
+  /// a pair the robust least squares leaves out stays in `chosen` and `pile_size`.
   double t0_sigma_s = 0.0;
   /// The 4-tuples evaluated and the candidates that passed every check.
   std::size_t combinations = 0;

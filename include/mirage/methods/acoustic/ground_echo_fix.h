@@ -44,11 +44,13 @@
 //     vertical sigmas below the floor is no fix.
 //  5. Its CRLB and DOPs at the fix: (H^T R^-1 H)^-1 of the rows used, the range model (t_0 given)
 //     or the pseudo-range model (t_0 unknown); eval/dop.h computes the same from the geometry.
-//     The reported covariance adds, for a plugged-in voted t_0, its own error (its least-squares
-//     sigma through the fix's response to a common range offset): the CRLB does not contain it.
+//     The reported covariance adds, for a plugged-in voted t_0, its own error (the vote's sigma
+//     through the fix's response to a common range offset): the CRLB does not contain it.
 //     With `vote_prior` the fix of the solved offset is updated by the vote's t_0 (a linear
 //     update with the vote's robust sigma); its DOPs are those of the information used, the
-//     rows plus the vote's t_0 (between the range and the pseudo-range model's).
+//     rows plus the vote's t_0 (between the range and the pseudo-range model's). They depend on
+//     the data: on the vote's sigma, and where the prior is left out (beyond 3 sigma of the
+//     solved offset) they are the pseudo-range model's.
 // An emission without three microphones in the vote's cluster, or with fewer rows than unknowns,
 // or an unverified fix, or a degenerate or unconverged solve, has no fix. Left open:
 // second-order echoes (floor-ceiling, wall-floor) form further consistent clusters that the
