@@ -326,17 +326,15 @@ struct SendingTimeRow {
 ///    sigma about a noisy centre), while its emission keeps at least two rows. The miss is not
 ///    corrected for the row's leverage (a threshold nearer 3.7 sigma with three rows), and an
 ///    emission's disagreement with the others' t_0 enters it (the emission test, which needs
-///    three emissions, fires first when that dominates). Measured on the ch. 8 example without
-///    echoes: height RMSE 0.059 m without this test, 0.058 m with it;
+///    three emissions, fires first when that dominates);
 ///  - an emission whose own t_0 differs from the others' by more than 3 sigma of the difference
 ///    (a wrong cluster consistent in itself: K_e absorbs it, only t_0 shows it), when at least
 ///    three emissions have one.
 /// The sigma is scaled by the Birge ratio sqrt(chi^2 / (E - 1)) of the emissions' estimates when
-/// above one (the scatter the stamps' sigma does not explain). Without these steps the vote's
-/// t_0 missed the truth by 3.2 of its sigmas (rms) in the ch. 8 example; see
-/// docs/results/acoustic.md. Left in: a bias of second order in the noise (the regressor 2 d
-/// carries the stamps' noise, correlated with the row's, E[da dy] = 4 sigma^2 (u_r + u_L)):
-/// t_0 later by ~0.4 of its sigma at 0.044 ms, 0.02 at a quarter of it (measured).
+/// above one (the scatter the stamps' sigma does not explain). Left in: a bias of second order
+/// in the noise (the regressor 2 d carries the stamps' noise, correlated with the row's,
+/// E[da dy] = 4 sigma^2 (u_r + u_L)), which makes t_0 late. Each step's effect, and the bias's
+/// size, measured: docs/results/acoustic.md (ch. 8, "The vote's t_0 and its sigma").
 /// Returns t_0 and its standard deviation (s).
 std::optional<std::pair<double, double>> RefineSendingTime(const PairTable& pairs, const Selection& selection, double t_s,
                                                            const SendingTimeVoteOptions& options) {

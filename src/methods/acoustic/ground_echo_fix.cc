@@ -5,6 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "mirage/estimation/gates/chi2_gate.h"
 #include "mirage/estimation/robust/hampel.h"
 #include "mirage/estimation/solvers/toa_nlls.h"
 
@@ -355,8 +356,8 @@ OffsetPriorUpdate UpdateWithOffsetPrior(const Eigen::Matrix4d& covariance_m2, do
   const double innovation_m = prior_m - offset_m;
   const double innovation_var_m2 = offset_var_m2 + prior_sigma_m * prior_sigma_m;
   if (!(prior_sigma_m > 0.0) || !(innovation_var_m2 > 0.0) ||
-      innovation_m * innovation_m > 9.0 * innovation_var_m2) {
-    return out;  // no prior, or one that contradicts the stamps
+      !estimation::InsideChi2Gate(innovation_m, innovation_var_m2, 9.0)) {
+    return out;  // no prior, or one that contradicts the stamps (beyond 3 sigma)
   }
   out.used = true;
   out.shift_m = cross_m2 * innovation_m / innovation_var_m2;
@@ -477,8 +478,7 @@ GroundEchoFix GroundEchoFixer::Process(const core::Epoch& epoch) {
     //    stamps' fix stands. The DOPs are those of the information used, the rows and the vote's
     //    t_0 at its sigma (the updated covariance; without the prior the pseudo-range model's):
     //    the range model's (t_0 given) would credit the fix with a t_0 the vote cannot deliver
-    //    (c sigma_t0 ~ 3 stamp sigmas over a 1 s window, which enters the height almost 1:1
-    //    without echoes; docs/results/acoustic.md).
+    //    (its error enters the height almost 1:1 without echoes; docs/results/acoustic.md).
     const OffsetPriorUpdate update =
         UpdateWithOffsetPrior(fix->covariance_m2, fix->offset_m, c_mps_ * vote->t0_s, c_mps_ * vote->t0_sigma_s);
     dop_crlb_m2 = update.covariance_m2;

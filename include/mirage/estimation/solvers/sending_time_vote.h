@@ -34,7 +34,7 @@
 //    eliminated), an emission more than 3 sigma from the others' t_0 and a row more than 3 sigma
 //    off its emission's fit left out, the sigma scaled by the Birge ratio of the emissions'
 //    scatter when above one (a wrong but self-consistent cluster in one emission otherwise pulls
-//    the window's t_0: 3.2 of its sigmas rms in the ch. 8 example, 1.7 with these steps).
+//    the window's t_0; measured in docs/results/acoustic.md).
 //    Hypothesis scoring costs O(H E P_e log P_e) for H <= candidates hypotheses, E emissions,
 //    P_e pairs per emission. The refinement re-clusters until t_0 moves by less than a tenth of
 //    a stamp sigma (K hardly depends on t_0, so the search's hypothesis may be ~1 ms off).
