@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <utility>
 
 #include <Eigen/Geometry>
 
@@ -104,15 +105,19 @@ core::OptionsDescriptor<LosIdentificationOptions> MakeDescriptor(bool with_share
                                   .range = ValueRange::AtLeast(0.0),
                                   .doc = "Margin of the causality test in stamp sigmas. 3."});
   d.Boolean(&O::cook_voting, {.key = "cook_voting",
-                              .doc = "Vote by Cook's distance of the 4-row problem (Sec. 5.1 steps 4-7); false: by "
-                                     "a residual window of window_sigmas."});
+                              .doc = "Vote by Cook's distance of the 4-row problem (the thesis's Sec. 5.1 steps 4-7); "
+                                     "false (default): by a window of window_sigmas around the predicted stamp."});
   d.Number(&O::cook_probability, {.key = "cook_probability",
                                   .range = ValueRange::Open(0.0, 1.0),
-                                  .doc = "Probability of the F quantile used as Cook's threshold. 0.5: the usual "
+                                  .doc = "Probability of the F quantile used as Cook's threshold (cook_voting). 0.5: the usual "
                                          "rule of thumb D > F_0.5(p', m - p')."});
   d.Number(&O::window_sigmas, {.key = "window_sigmas",
                                .range = ValueRange::Above(0.0),
-                               .doc = "Half-width of the residual window of the plain vote, in stamp sigmas. 3."});
+                               .doc = "Half-width of the voting window around the fix's predicted stamp (cook_voting "
+                                      "false), in stamp sigmas. 3."});
+  d.Boolean(&O::final_test, {.key = "final_test",
+                             .doc = "After the refinement, leave out the stamp furthest from the fit (studentised "
+                                    "residual) while it lies beyond window_sigmas, and refit."});
   d.Integer(&O::min_votes, {.key = "min_votes",
                             .range = ValueRange::AtLeast(0.0),
                             .doc = "Fewest voters beyond the triplet for a fix. 1: a triplet alone is verified by "
@@ -125,6 +130,35 @@ core::OptionsDescriptor<LosIdentificationOptions> MakeDescriptor(bool with_share
                                         .range = ValueRange::AtLeast(1.0),
                                         .doc = "Iteration limit of the final Levenberg-Marquardt refinement. 50."});
   return d;
+}
+
+// The row of the planar TOA fit (unknowns x, y, b) with the largest studentised residual
+// |e_i| / (sigma sqrt(1 - l_ii)) (Eq. 5.12, the known sigma) at (sender, offset), and that value;
+// {-1, 0} when nothing can be tested (H^T H singular, or every row of leverage 1).
+std::pair<int, double> WorstStudentisedResidual(const std::vector<Vec3>& mics_m, const std::vector<double>& rho_m,
+                                                const Vec3& sender_m, double offset_m, double sigma_m) {
+  const auto m = static_cast<Eigen::Index>(mics_m.size());
+  Eigen::MatrixXd H(m, 3);
+  Eigen::VectorXd e(m);
+  for (Eigen::Index i = 0; i < m; ++i) {
+    const Vec3& mic = mics_m[static_cast<std::size_t>(i)];
+    const auto row = ToaJacobianXyb(sender_m, mic);
+    if (!row) return {-1, 0.0};  // the fix sits on a receiver
+    H.row(i) = *row;
+    e(i) = rho_m[static_cast<std::size_t>(i)] - offset_m - (sender_m - mic).norm();
+  }
+  const auto diagnostics = estimation::DiagnoseRegression(H, e, {.sigma = sigma_m});
+  if (!diagnostics) return {-1, 0.0};
+  int worst = -1;
+  double largest = 0.0;
+  for (Eigen::Index i = 0; i < m; ++i) {
+    const double w = std::abs(diagnostics->studentized(i));
+    if (w > largest) {  // NaN (leverage 1) compares false
+      largest = w;
+      worst = static_cast<int>(i);
+    }
+  }
+  return {worst, largest};
 }
 
 }  // namespace
@@ -331,34 +365,54 @@ LosIdentification IdentifyLos(std::span<const Vec3> receivers_m, const std::vect
   }
   if (best.votes < options.min_votes) return out;
 
-  // Step 8: Levenberg-Marquardt over the triplet and its voters, from the closed-form fix.
-  std::vector<Vec3> mics;
-  std::vector<double> rho;
+  // Step 8: Levenberg-Marquardt over the triplet and its voters, from the closed-form fix; with
+  // the final test, while the stamp furthest from the fit (studentised) lies beyond window_sigmas
+  // it is left out and the rest refit (Eq. 5.3 at the refined fix).
+  std::vector<int> rows;  // receivers in the fix
   for (int i = 0; i < n; ++i) {
-    const int s = best.slot[static_cast<std::size_t>(i)];
-    if (s < 0) continue;
-    out.los_receivers.push_back(i);
-    out.los_stamp_index[static_cast<std::size_t>(i)] = table.input_index[static_cast<std::size_t>(i * k + s)];
-    mics.push_back(receivers_m[static_cast<std::size_t>(i)]);
-    rho.push_back(rho_at(i, s));
+    if (best.slot[static_cast<std::size_t>(i)] >= 0) rows.push_back(i);
   }
-  const std::vector<double> sigmas(mics.size(), sigma_m);
   estimation::NllsOptions nlls;
   nlls.max_iterations = options.max_refine_iterations;
   nlls.method = estimation::NllsMethod::kLevenbergMarquardt;
   nlls.known_height_m = sender_height_m;
-  estimation::SolverFix fix = estimation::SolveToaNlls(mics, rho, sigmas, best.position_m, best.offset_m, nlls);
-  out.refine_status = fix.status;
-  if (fix.status != estimation::SolverStatus::kOk) {
-    // Keep the closed-form fix, with the covariance and rms linearised there.
-    estimation::NllsProblem problem;
-    problem.model = estimation::RowModel::kToa;
-    problem.receivers_m = mics;
-    problem.values_m = rho;
-    problem.sigmas_m = sigmas;
-    fix = estimation::AssessFix(problem, best.position_m, best.offset_m, sender_height_m);
-    fix.position_m = best.position_m;
-    fix.offset_m = best.offset_m;
+  Vec3 start_m = best.position_m;
+  double start_offset_m = best.offset_m;
+  estimation::SolverFix fix;
+  for (;;) {
+    std::vector<Vec3> mics;
+    std::vector<double> rho;
+    for (int i : rows) {
+      mics.push_back(receivers_m[static_cast<std::size_t>(i)]);
+      rho.push_back(rho_at(i, best.slot[static_cast<std::size_t>(i)]));
+    }
+    const std::vector<double> sigmas(mics.size(), sigma_m);
+    fix = estimation::SolveToaNlls(mics, rho, sigmas, start_m, start_offset_m, nlls);
+    out.refine_status = fix.status;
+    if (fix.status != estimation::SolverStatus::kOk) {
+      // Keep the starting fix, with the covariance and rms linearised there.
+      estimation::NllsProblem problem;
+      problem.model = estimation::RowModel::kToa;
+      problem.receivers_m = mics;
+      problem.values_m = rho;
+      problem.sigmas_m = sigmas;
+      fix = estimation::AssessFix(problem, start_m, start_offset_m, sender_height_m);
+      fix.position_m = start_m;
+      fix.offset_m = start_offset_m;
+    }
+    if (!options.final_test) break;
+    const auto [worst, w] = WorstStudentisedResidual(mics, rho, fix.position_m, fix.offset_m, sigma_m);
+    if (worst < 0 || !(w > options.window_sigmas)) break;
+    if (static_cast<int>(rows.size()) - 1 < 3 + options.min_votes) return out;  // nothing consistent is verified
+    rows.erase(rows.begin() + worst);
+    ++out.stamps_left_out;
+    start_m = fix.position_m;
+    start_offset_m = fix.offset_m;
+  }
+  for (int i : rows) {
+    out.los_receivers.push_back(i);
+    const int s = best.slot[static_cast<std::size_t>(i)];
+    out.los_stamp_index[static_cast<std::size_t>(i)] = table.input_index[static_cast<std::size_t>(i * k + s)];
   }
   out.position_m = fix.position_m;
   out.offset_m = fix.offset_m;

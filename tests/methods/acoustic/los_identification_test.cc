@@ -2,11 +2,13 @@
 // The combinatorial LOS identification (Bordoy 2020 Sec. 5.1): the fixed-size Cook step agrees
 // with the general regression diagnostics; with 4 of 10 microphones NLOS (biases U(1, 4.5) m) the
 // 6 LOS microphones are found exactly without noise; over 200 noisy trials (sigma 0.1 m) no NLOS
-// stamp is labelled (precision 1) while Cook's F_0.5 threshold misses some LOS ones (recall 0.83,
-// 0.97 with F_0.8, 0.997 with a 3-sigma window); the direct stamps are chosen over later echoes; a sender heard only through one
-// wall is returned mirrored (the thesis's stated limitation); the causality test rejects the
-// virtual sender of a majority of echo-only microphones; Cook voting is stricter than a 3-sigma
-// window; the TDOA bound only saves closed-form solves.
+// stamp is labelled (precision 1) while the thesis's Cook vote at F_0.5 misses some LOS ones
+// (recall 0.83, 0.96 with F_0.8, 0.993 with the default 3-sigma window); the direct stamps are
+// chosen over later echoes, and the final test keeps echoes a few sigma longer than the direct
+// path out of the labels; a sender heard only through one wall is returned mirrored (the
+// thesis's stated limitation); the causality test rejects the virtual sender of a majority of
+// echo-only microphones; Cook voting is stricter than a 3-sigma window; the TDOA bound only saves
+// closed-form solves.
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -195,6 +197,7 @@ TEST(IdentifyLos, NoisyMonteCarloPrecisionAndRecall) {
   // precision and lifts the recall; the 3-sigma window is best here (the biases are >= 10 sigma).
   LosIdentificationOptions options;
   options.range_sigma_m = 0.1;
+  options.cook_voting = true;
   const MonteCarloScore cook_50 = ScoreMonteCarlo(options);
   Print("cook F_0.5", cook_50);
   EXPECT_GE(cook_50.precision, 0.99);
@@ -247,23 +250,41 @@ TEST(IdentifyLos, ChoosesTheDirectStampsOverLaterEchoes) {
   EXPECT_EQ(k1.los_receivers, result.los_receivers);
 }
 
-TEST(IdentifyLos, NeverLabelsAnEchoOrABiasedStampWithNoise) {
+// Every microphone hears the echo off the wall y = 0 before its direct path; 0, 3 and 5 hear the
+// direct path late (NLOS bias). Cook's vote labels no echo and no biased stamp. The window vote
+// with the final test labels no stamp more than 4 sigma (noise included) off the direct path: an
+// echo 0.41 m longer with noise -0.12 m (trial 5: 2.9 sigma) passes as noise. Without the final
+// test the echoes of trials 3 and 8 (5.5 and 4.8 sigma, noise included) pass the window of an
+// imprecise triplet fix.
+TEST(IdentifyLos, LabelsNoEchoOrBiasedStampBeyondWhatItsTestResolves) {
   const std::vector<Vec3> mics = HallMics();
   const std::vector<int> nlos{0, 3, 5};
-  LosIdentificationOptions options;
-  options.range_sigma_m = 0.1;
-  for (int trial = 0; trial < 20; ++trial) {
-    core::Rng rng(55, static_cast<std::uint64_t>(trial));
-    const Vec3 sender(rng.Uniform(2.0, 13.0), rng.Uniform(2.0, 9.0), kSenderHeight_m);
-    const LosIdentification result = IdentifyLos(mics, EchoStamps(mics, sender, nlos, 0.1, rng), kSenderHeight_m, options);
-    ASSERT_TRUE(result.found) << trial;
-    // Cook's F_0.5 threshold drops a LOS microphone now and then (see the Monte-Carlo test).
-    EXPECT_GE(result.los_receivers.size(), 4u) << trial;
-    for (int i : result.los_receivers) {
-      EXPECT_EQ(result.los_stamp_index[static_cast<std::size_t>(i)], 1) << trial << " mic " << i;
-      EXPECT_EQ(std::find(nlos.begin(), nlos.end(), i), nlos.end()) << trial << " mic " << i;
+  constexpr double kSigma_m = 0.1;
+  for (const bool cook : {true, false}) {
+    LosIdentificationOptions options;
+    options.range_sigma_m = kSigma_m;
+    options.cook_voting = cook;
+    for (int trial = 0; trial < 20; ++trial) {
+      core::Rng rng(55, static_cast<std::uint64_t>(trial));
+      const Vec3 sender(rng.Uniform(2.0, 13.0), rng.Uniform(2.0, 9.0), kSenderHeight_m);
+      const auto stamps = EchoStamps(mics, sender, nlos, kSigma_m, rng);
+      const LosIdentification result = IdentifyLos(mics, stamps, kSenderHeight_m, options);
+      ASSERT_TRUE(result.found) << trial;
+      // Cook's F_0.5 threshold drops a LOS microphone now and then (see the Monte-Carlo test).
+      EXPECT_GE(result.los_receivers.size(), 4u) << trial;
+      for (int i : result.los_receivers) {
+        const auto ui = static_cast<std::size_t>(i);
+        if (cook) {
+          EXPECT_EQ(result.los_stamp_index[ui], 1) << trial << " mic " << i;
+          EXPECT_EQ(std::find(nlos.begin(), nlos.end(), i), nlos.end()) << trial << " mic " << i;
+        } else {
+          const double excess_m =
+              stamps[ui][static_cast<std::size_t>(result.los_stamp_index[ui])] - Pseudo(sender, mics[ui]);
+          EXPECT_LT(excess_m, 4.0 * kSigma_m) << trial << " mic " << i;
+        }
+      }
+      EXPECT_LT((result.position_m - sender).head<2>().norm(), 0.5) << trial;
     }
-    EXPECT_LT((result.position_m - sender).head<2>().norm(), 0.5) << trial;
   }
 }
 
@@ -322,12 +343,24 @@ TEST(IdentifyLos, TheCausalityTestRejectsTheVirtualSenderOfEchoOnlyMicrophones) 
   EXPECT_LT((with_test.position_m - sender).norm(), 1e-6);
   EXPECT_EQ(with_test.los_receivers, direct);
 
+  // Without the test a virtual sender wins. Cook's vote returns the mirror S' itself. The window
+  // vote returns a point 1 m beyond S' whose predictions lie within 3 sigma of eight stamps (the
+  // six echoes and two direct ones: rms 0.08 m), more votes than S' gets; the final test finds
+  // them consistent. Either way the sender is lost.
   options.causality_test = false;
   const LosIdentification without = IdentifyLos(mics, stamps, kSenderHeight_m, options);
   ASSERT_TRUE(without.found);
   EXPECT_EQ(without.virtual_senders_rejected, 0);
-  EXPECT_LT((without.position_m - mirrored).norm(), 1e-6);
-  EXPECT_EQ(without.los_receivers, Complement(10, direct));
+  EXPECT_GT((without.position_m - sender).norm(), 3.0);
+  EXPECT_LT((without.position_m - mirrored).norm(), 1.5);
+  for (int i : Complement(10, direct)) {
+    EXPECT_NE(std::find(without.los_receivers.begin(), without.los_receivers.end(), i), without.los_receivers.end()) << i;
+  }
+  options.cook_voting = true;
+  const LosIdentification cook = IdentifyLos(mics, stamps, kSenderHeight_m, options);
+  ASSERT_TRUE(cook.found);
+  EXPECT_LT((cook.position_m - mirrored).norm(), 1e-6);
+  EXPECT_EQ(cook.los_receivers, Complement(10, direct));
 }
 
 TEST(IdentifyLos, CookVotingRejectsASmallBiasThatAThreeSigmaWindowAccepts) {
@@ -340,6 +373,7 @@ TEST(IdentifyLos, CookVotingRejectsASmallBiasThatAThreeSigmaWindowAccepts) {
   auto stamps = NlosStamps(mics, sender, {1, 4}, 0.0, rng);
   stamps[9][0] += 0.29;
   LosIdentificationOptions options;
+  options.cook_voting = true;
   const LosIdentification cook = IdentifyLos(mics, stamps, kSenderHeight_m, options);
   options.cook_voting = false;
   const LosIdentification window = IdentifyLos(mics, stamps, kSenderHeight_m, options);
