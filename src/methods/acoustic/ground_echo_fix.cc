@@ -415,6 +415,10 @@ GroundEchoFix GroundEchoFixer::Process(const core::Epoch& epoch) {
   const auto heard = std::count_if(chosen.begin(), chosen.end(), [](const auto& c) { return c.los_index >= 0; });
   if (heard < 3) return out;  // this emission has no consistent LOS / floor-echo set
   track_ = Track{epoch.t_s, epoch.t_s + vote->t0_s};
+  if (options_.sending_time == "estimated") {
+    out.voted_sending_time_s = epoch.t_s + vote->t0_s;
+    out.voted_sending_time_sigma_s = vote->t0_sigma_s;
+  }
 
   // 2. The sending time, relative to epoch.t_s.
   std::optional<double> t0_s;

@@ -111,6 +111,11 @@ struct GroundEchoFix {
   /// The sending time used, in the stamps' time base (s; "unknown": the epoch time plus the
   /// solved offset over c); empty without a fix.
   std::optional<double> sending_time_s;
+  /// With sending_time estimated: the vote's t_0 (s, the stamps' time base) and its standard
+  /// deviation (s) as the vote reports them, before the fix uses them; set whenever the vote
+  /// found one, also when the emission then gets no fix.
+  std::optional<double> voted_sending_time_s;
+  double voted_sending_time_sigma_s = 0.0;
 };
 
 /// A fix of [x, y, z, b] (b the offset, m) updated by a prior on b (step 5).
