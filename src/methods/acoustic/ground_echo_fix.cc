@@ -10,6 +10,27 @@
 #include "mirage/estimation/solvers/toa_nlls.h"
 
 namespace mirage::methods::acoustic {
+namespace {
+
+// How fixes of one emission rank, in the consensus over smallest sets and between the vote's
+// clusters: more microphones within 3 sigma, then more of the emission's stamps explained (a
+// microphone's LOS and floor echo among all its stamps, SupportAt), then the smaller sum of
+// squared misses. Three nearly collinear microphones and a false alarm fit a point on a circle
+// around their line as closely as four true stamps fit the sender, and a cluster of LOS /
+// wall-echo pairs fits a higher sender with a solved offset as closely as the LOS / floor-echo
+// pairs fit the sender; the other stamps of the emission do not follow the wrong point.
+struct FixRank {
+  std::size_t mics = 0;
+  int support_rows = 0;
+  double sum_sq_m2 = 0.0;
+  [[nodiscard]] bool Beats(const FixRank& other) const {
+    if (mics != other.mics) return mics > other.mics;
+    if (support_rows != other.support_rows) return support_rows > other.support_rows;
+    return sum_sq_m2 < other.sum_sq_m2;
+  }
+};
+
+}  // namespace
 
 const core::OptionsDescriptor<GroundEchoOptions>& GroundEchoOptionsDescriptor() {
   using core::ValueRange;
@@ -195,6 +216,8 @@ std::optional<GroundEchoFixer::SelectionFit> GroundEchoFixer::FitSelection(
     return worst_m;
   };
   const double gate_m = 3.0 * sigma_m_;
+  // The stamps' origin at a fix (m): c t_0 when t_0 is given, else the fix's solved offset.
+  const auto origin_m = [&](const estimation::SolverFix& f) { return t0_s ? c_mps_ * *t0_s : f.offset_m; };
   const auto within = [&](const estimation::SolverFix& f) {
     const auto residual_m = mic_residuals_m(f);
     std::vector<bool> in(residual_m.size(), false);
@@ -233,11 +256,8 @@ std::optional<GroundEchoFixer::SelectionFit> GroundEchoFixer::FitSelection(
     // largest consensus instead (Fischler & Bolles, the thesis's [84]): every smallest set of
     // microphones with rows for the unknowns is solved, the microphones within 3 sigma of its
     // fix are its consensus, and the largest one is refitted and checked once more against all
-    // microphones. Ties go to the fix that explains more of the emission's stamps, each
-    // microphone's LOS and floor echo among all its stamps (SupportAt), then to the smaller sum
-    // of their squared misses: three nearly collinear microphones plus a false alarm fit a point
-    // on the circle around their line as closely as the sender fits four true stamps, but the
-    // other microphones' stamps do not follow that point. Up to C(12, 4) = 495 solves
+    // microphones. Ties go by FixRank (the stamps of the whole emission the fix explains, then
+    // the sum of their squared misses). Up to C(12, 4) = 495 solves
     // for twelve microphones without echoes, only at emissions whose full fit fails the test.
     // With echo rows and t_0 given the smallest set is two microphones, whose four receivers
     // (each with its floor mirror) lie in one vertical plane: its fit has a mirror solution
@@ -247,9 +267,7 @@ std::optional<GroundEchoFixer::SelectionFit> GroundEchoFixer::FitSelection(
     std::vector<bool> pick(mics.size(), false);
     std::fill(pick.begin(), pick.begin() + static_cast<std::ptrdiff_t>(k), true);
     std::vector<bool> best_in;
-    std::size_t best_count = 0;
-    int best_support = 0;
-    double best_sum_sq_m2 = 0.0;
+    FixRank best;
     const std::optional<Vec3> start_m = fix ? std::optional<Vec3>(fix->position_m) : last_m_;
     do {
       std::vector<bool> subset(mics_m_.size(), false);
@@ -258,17 +276,15 @@ std::optional<GroundEchoFixer::SelectionFit> GroundEchoFixer::FitSelection(
       if (!f) continue;
       const auto in = within(*f);
       const auto count = static_cast<std::size_t>(std::count(in.begin(), in.end(), true));
-      if (count == 0 || count < best_count) continue;
-      const StampSupport support = SupportAt(f->position_m, t0_s ? c_mps_ * *t0_s : f->offset_m, stamps_s);
-      if (count > best_count || support.rows > best_support ||
-          (support.rows == best_support && support.sum_sq_m2 < best_sum_sq_m2)) {
+      if (count == 0 || count < best.mics) continue;
+      const StampSupport support = SupportAt(f->position_m, origin_m(*f), stamps_s);
+      const FixRank rank{count, support.rows, support.sum_sq_m2};
+      if (rank.Beats(best)) {
         best_in = in;
-        best_count = count;
-        best_support = support.rows;
-        best_sum_sq_m2 = support.sum_sq_m2;
+        best = rank;
       }
     } while (std::prev_permutation(pick.begin(), pick.end()));
-    if (best_count <= k) return std::nullopt;
+    if (best.mics <= k) return std::nullopt;
     used = best_in;
     fix = fit(used, start_m);
     if (fix) {
@@ -316,7 +332,7 @@ std::optional<GroundEchoFixer::SelectionFit> GroundEchoFixer::FitSelection(
     sum_u += leg_m.normalized();
   }
   out.mics = static_cast<int>(std::count(used.begin(), used.end(), true));
-  out.support_rows = SupportAt(fix->position_m, t0_s ? c_mps_ * *t0_s : fix->offset_m, stamps_s).rows;
+  out.support_rows = SupportAt(fix->position_m, origin_m(*fix), stamps_s).rows;
   // (H^T R^-1 H)^-1 H^T R^-1 1 with equal sigmas: the covariance times sum u_r / sigma^2.
   out.common_shift_gain = fix->covariance_m2.topLeftCorner<3, 3>() * sum_u / (sigma_m_ * sigma_m_);
   return out;
@@ -443,13 +459,12 @@ GroundEchoFix GroundEchoFixer::Process(const core::Epoch& epoch) {
   //      vote's count: only the clusters as large as the chosen one are tried.
   const bool absolute_ranges = options_.sending_time == "known";
   const auto& stamps = voted.back().mic_stamps_s;
-  // Ties between fixes of as many microphones, as in the consensus: the fix explaining more of
-  // the emission's stamps (a cluster of LOS / wall-echo pairs can fit a higher sender with a
-  // solved offset as closely as the LOS / floor-echo pairs fit the sender).
+  // Ranked as in the consensus (FixRank), by the fit's own sum of squared residuals last.
   const auto better = [](const SelectionFit& a, const SelectionFit& b) {
-    if (a.mics != b.mics) return a.mics > b.mics;
-    if (a.support_rows != b.support_rows) return a.support_rows > b.support_rows;
-    return a.sum_sq_m2 < b.sum_sq_m2;
+    const auto rank = [](const SelectionFit& f) {
+      return FixRank{static_cast<std::size_t>(f.mics), f.support_rows, f.sum_sq_m2};
+    };
+    return rank(a).Beats(rank(b));
   };
   std::optional<SelectionFit> best = FitSelection(chosen, stamps, t0_s);
   for (const auto& alternative : vote->alternatives) {
