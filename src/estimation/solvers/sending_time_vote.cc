@@ -323,7 +323,11 @@ struct SendingTimeRow {
 /// is unchanged):
 ///  - a row whose miss at the window's t_0 (with its emission's K_e at that t_0) exceeds 3 of its
 ///    sigmas (a false alarm or a heavy-tail stamp inside the cluster's K tolerance, which is 3
-///    sigma about a noisy centre), while its emission keeps at least two rows. The miss is not
+///    sigma about a noisy centre), or whose delay T_r - T_L exceeds the largest a floor echo can
+///    have at the height K_e gives, 2 z / c, by 3 sigmas (with the microphones' heights: a later
+///    echo or a false alarm as r, whose large regressor 2 d makes it a high-leverage row that its
+///    emission's other rows cannot check, claiming most of the window's information), while its
+///    emission keeps at least two rows. The miss is not
 ///    corrected for the row's leverage (a threshold nearer 3.7 sigma with three rows), and an
 ///    emission's disagreement with the others' t_0 enters it (the emission test, which needs
 ///    three emissions, fires first when that dominates);
@@ -392,10 +396,20 @@ std::optional<std::pair<double, double>> RefineSendingTime(const PairTable& pair
       }
       if (rows[e].size() <= 2) continue;
       const double k = (est.sby - t0 * est.sab) / est.sbb;  // K_e at the window's t_0
+      // With the microphones' heights (b = h) K_e = 4 z / c^2 gives the sender's height z, and a
+      // floor echo lags its LOS by at most 2 z / c = K_e c / 2 (R_r - R_L = 4 h z / (R_r + R_L)
+      // and R_r + R_L >= 2 h, equal with the sender below the microphone). The delay's sigma:
+      // the two stamps' and the bound's (K_e's variance 1 / sbb at this t_0).
+      const bool heights = !options.mic_heights_m.empty();
+      const double max_delay_s = 0.5 * k * options.speed_mps;
+      const double delay_sigma_s = std::sqrt(2.0 * var_s2 + 0.25 * options.speed_mps * options.speed_mps / est.sbb);
       for (std::size_t i = 0; i < rows[e].size(); ++i) {
         const auto& r = rows[e][i];
         const double miss = r.y - r.a * t0 - r.b * k;
-        if (r.w * miss * miss > worst_z2) worst_z2 = r.w * miss * miss, worst_e = e, worst_row = static_cast<int>(i);
+        double z2 = r.w * miss * miss;
+        const double late = (0.5 * r.a - max_delay_s) / delay_sigma_s;
+        if (heights && late > 0.0) z2 = std::max(z2, late * late);
+        if (z2 > worst_z2) worst_z2 = z2, worst_e = e, worst_row = static_cast<int>(i);
       }
     }
     if (worst_row == -2) {
