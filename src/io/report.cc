@@ -55,6 +55,11 @@ json GroupJson(const GroupSummary& g, const std::string& bound) {
   };
   if (g.hdop) j["hdop"] = dop_json(*g.hdop);
   if (g.vdop) j["vdop"] = dop_json(*g.vdop);
+  if (g.los_labels) {
+    const auto& l = *g.los_labels;
+    j["los_labels"] = {{"precision", l.precision}, {"recall", l.recall}, {"true_positives", l.true_positives},
+                       {"false_positives", l.false_positives}, {"false_negatives", l.false_negatives}};
+  }
   j["final_error_m"] = g.has_truth ? json{{"mean", g.final_error_mean_m}, {"p90", g.final_error_p90_m}} : json(nullptr);
   if (g.bound_mean_m) {
     j["peb_m"] = {{"mean", *g.bound_mean_m}, {"p50", *g.bound_p50_m}, {"rms", *g.bound_rms_m}, {"kind", bound},

@@ -77,7 +77,12 @@ std::optional<SourceStep> AcousticSource::Next() {
     record.t_s = step.epoch.t_s;
     record.receiver_id = e.anchors[m].id;
     record.receiver_index = static_cast<int>(m);
-    for (const auto& s : emission.stamps[m]) record.toa_s.push_back(s.toa_s);
+    std::vector<bool> direct;
+    for (const auto& s : emission.stamps[m]) {
+      record.toa_s.push_back(s.toa_s);
+      direct.push_back(s.label == channel::StampLabel::kDirect);
+    }
+    step.direct_stamps.push_back(std::move(direct));
     if (e.acoustic.emission_time_known) record.emission_s = t_emit_s;
     step.epoch.toas.push_back(std::move(record));
   }

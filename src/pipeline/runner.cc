@@ -278,6 +278,7 @@ RunRecord RunOne(const VariantContext& vc, int variant, int group, int run, cons
       s.expected = out.expected;
       s.relocalized = out.relocalized;
       s.fixed = out.fixed;
+      if (a == 0) s.los_labels = CountLosLabels(step->epoch, step->direct_stamps, out.los_stamps);
       record.agents[a].steps.push_back(s);
     }
     if (frame && given.biased >= 0) {

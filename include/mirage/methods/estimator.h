@@ -58,6 +58,10 @@ struct StepOutput {
   std::optional<double> hdop;
   std::optional<double> vdop;
   std::vector<PathSinr> sinr_estimates;
+  /// Methods that label arrival stamps as line of sight (LOS identification): per record of the
+  /// epoch's toas, the index of its stamp labelled LOS, or -1 (none, or no fix). Empty when the
+  /// method labels no stamps. The runner scores it against the simulation's labels.
+  std::vector<int> los_stamps;
 };
 
 /// One feature of an estimated map (a virtual anchor of SLAM), in the plane.

@@ -24,6 +24,9 @@ struct SourceStep {
   /// Simulations without a channel model behind their ranges (ranging with multipath): the ids of
   /// the channel VAs whose paths were measured, for the map's truth.
   std::vector<int> measured_channel_vas;
+  /// Simulations of arrival stamps: per record of epoch.toas, per stamp, whether it is the direct
+  /// path without an NLOS delay (the truth of a method's line-of-sight labels); empty otherwise.
+  std::vector<std::vector<bool>> direct_stamps;
   double simulate_s = 0.0;  ///< CPU time spent making this epoch (s)
 };
 

@@ -13,6 +13,7 @@
 #include "mirage/core/types.h"
 #include "mirage/eval/rigid_alignment.h"
 #include "mirage/methods/estimator.h"
+#include "mirage/pipeline/los_labels.h"
 #include "mirage/pipeline/map_evaluation.h"
 
 namespace mirage::pipeline {
@@ -37,6 +38,9 @@ struct TrackStep {
   int expected = 0;      ///< measurements the model expected at this epoch, all agents
   bool relocalized = false;
   bool fixed = true;  ///< the method made an estimate at this epoch (methods::StepOutput::fixed)
+  /// The epoch's LOS labels against the simulation's (the first agent's step only); empty when
+  /// the method labels no stamps or the source has no labels.
+  std::optional<LosLabelCount> los_labels;
 };
 
 /// One tracked agent over a run.

@@ -663,6 +663,17 @@ StepOutput AcousticEstimator::Combinatorial(const core::Epoch& epoch) {
     const Vec2 p = fix.position_m.head<2>();
     inside = (p.array() >= lo.array()).all() && (p.array() <= hi.array()).all();
   }
+  // The labels per record: a receiver's stamps are its records' concatenated (Stamps).
+  out.los_stamps.assign(epoch.toas.size(), -1);
+  if (fix.found && inside) {
+    std::vector<int> offset(world_.anchors.size(), 0);
+    for (std::size_t r = 0; r < epoch.toas.size(); ++r) {
+      const auto m = static_cast<std::size_t>(epoch.toas[r].receiver_index);
+      const int index = fix.los_stamp_index.at(m) - offset[m];
+      if (index >= 0 && index < static_cast<int>(epoch.toas[r].toa_s.size())) out.los_stamps[r] = index;
+      offset[m] += static_cast<int>(epoch.toas[r].toa_s.size());
+    }
+  }
   if (!fix.found || !inside) {
     out.agents.push_back(last_);  // no fix: the last one stands, the epoch counts as a failure
     out.fixed = false;
