@@ -57,8 +57,13 @@ json GroupJson(const GroupSummary& g, const std::string& bound) {
   if (g.vdop) j["vdop"] = dop_json(*g.vdop);
   if (g.los_labels) {
     const auto& l = *g.los_labels;
-    j["los_labels"] = {{"precision", l.precision}, {"recall", l.recall}, {"true_positives", l.true_positives},
-                       {"false_positives", l.false_positives}, {"false_negatives", l.false_negatives}};
+    const bool labelled = l.true_positives + l.false_positives > 0;
+    const bool direct = l.true_positives + l.false_negatives > 0;
+    j["los_labels"] = {{"precision", labelled ? json(l.precision) : json(nullptr)},
+                       {"recall", direct ? json(l.recall) : json(nullptr)},
+                       {"true_positives", l.true_positives},
+                       {"false_positives", l.false_positives},
+                       {"false_negatives", l.false_negatives}};
   }
   j["final_error_m"] = g.has_truth ? json{{"mean", g.final_error_mean_m}, {"p90", g.final_error_p90_m}} : json(nullptr);
   if (g.bound_mean_m) {

@@ -8,6 +8,8 @@ namespace mirage::pipeline {
 std::optional<LosLabelCount> CountLosLabels(const core::Epoch& epoch, const std::vector<std::vector<bool>>& direct_stamps,
                                             const std::vector<int>& los_stamps) {
   const std::size_t n = epoch.toas.size();
+  // Nothing labelled or no truth (also an epoch without stamp records, as on UWB sources): no count.
+  if (los_stamps.empty() || direct_stamps.empty()) return std::nullopt;
   if (direct_stamps.size() != n || los_stamps.size() != n) return std::nullopt;
   LosLabelCount count;
   for (std::size_t r = 0; r < n; ++r) {

@@ -46,6 +46,8 @@ TEST(CountLosLabels, GivesNoCountWithoutLabelsOrWithMismatchedShapes) {
   EXPECT_FALSE(CountLosLabels(epoch, {}, {0, 1, -1}).has_value());  // no simulation labels
   EXPECT_FALSE(CountLosLabels(epoch, {{true, false}, {false, true}, {false}}, {0, 1, -1}).has_value());
   EXPECT_FALSE(CountLosLabels(epoch, direct, {0, 2, -1}).has_value());  // no such stamp
+  // An epoch without stamp records (a UWB source): no count, not a count of zeros.
+  EXPECT_FALSE(CountLosLabels(core::Epoch{}, {}, {}).has_value());
 }
 
 }  // namespace

@@ -21,8 +21,8 @@ struct LosLabelCount {
 /// The method's labels (methods::StepOutput::los_stamps: per record of epoch.toas, the labelled
 /// stamp's index or -1) against the truth (SourceStep::direct_stamps: per record, per stamp,
 /// whether it is the undelayed direct path). A record whose direct stamp is not labelled, also at
-/// an emission without a fix, is a false negative. Empty when either side has no labels or
-/// their shapes do not match the epoch's records.
+/// an emission without a fix, is a false negative. Empty when either side has no labels (also
+/// an epoch without stamp records) or their shapes do not match the epoch's records.
 std::optional<LosLabelCount> CountLosLabels(const core::Epoch& epoch, const std::vector<std::vector<bool>>& direct_stamps,
                                             const std::vector<int>& los_stamps);
 

@@ -64,8 +64,8 @@ struct LosLabelStats {
   int true_positives = 0;
   int false_positives = 0;
   int false_negatives = 0;
-  double precision = 0.0;  ///< TP / (TP + FP); 0 without labels
-  double recall = 0.0;     ///< TP / (TP + FN): of the direct stamps, the share labelled
+  double precision = 0.0;  ///< TP / (TP + FP); 0 without labels (the report: null)
+  double recall = 0.0;     ///< TP / (TP + FN): of the direct stamps, the share labelled; 0 without any (null)
 };
 
 /// Distribution of a dilution of precision over the epochs that have one.

@@ -354,6 +354,8 @@ std::optional<std::pair<double, double>> RefineSendingTime(const PairTable& pair
                          delay_s * (u_r + u_l), 1.0 / (4.0 * var_s2 * (u_r * u_r + u_l * u_l))});
     }
   }
+  const bool heights = !options.mic_heights_m.empty();  // the delay bound needs them
+  const double c2 = options.speed_mps * options.speed_mps;
   struct Estimate {
     double info = 0.0;  // I_e (s^-2)
     double t0 = 0.0;    // relative to t_s
@@ -396,19 +398,23 @@ std::optional<std::pair<double, double>> RefineSendingTime(const PairTable& pair
       }
       if (rows[e].size() <= 2) continue;
       const double k = (est.sby - t0 * est.sab) / est.sbb;  // K_e at the window's t_0
-      // With the microphones' heights (b = h) K_e = 4 z / c^2 gives the sender's height z, and a
-      // floor echo lags its LOS by at most 2 z / c = K_e c / 2 (R_r - R_L = 4 h z / (R_r + R_L)
-      // and R_r + R_L >= 2 h, equal with the sender below the microphone). The delay's sigma:
-      // the two stamps' and the bound's (K_e's variance 1 / sbb at this t_0).
-      const bool heights = !options.mic_heights_m.empty();
-      const double max_delay_s = 0.5 * k * options.speed_mps;
-      const double delay_sigma_s = std::sqrt(2.0 * var_s2 + 0.25 * options.speed_mps * options.speed_mps / est.sbb);
       for (std::size_t i = 0; i < rows[e].size(); ++i) {
         const auto& r = rows[e][i];
         const double miss = r.y - r.a * t0 - r.b * k;
         double z2 = r.w * miss * miss;
-        const double late = (0.5 * r.a - max_delay_s) / delay_sigma_s;
-        if (heights && late > 0.0) z2 = std::max(z2, late * late);
+        // With the microphones' heights (b = h) K = 4 z / c^2 gives the sender's height z, and a
+        // floor echo lags its LOS by at most 2 z / c = K c / 2 (R_r - R_L = 4 h z / (R_r + R_L)
+        // and R_r + R_L >= 2 h, equal with the sender below the microphone). K from the
+        // emission's other rows (a late high-leverage row would raise its own bound); the
+        // delay's sigma: its two stamps' and the bound's (that K's variance at this t_0). A
+        // K that is not positive is no sender's: the emission test handles that emission.
+        const double sbb_rest = est.sbb - r.w * r.b * r.b;
+        if (heights && sbb_rest > 0.0) {
+          const double k_rest = (est.sby - r.w * r.b * r.y - t0 * (est.sab - r.w * r.a * r.b)) / sbb_rest;
+          const double delay_sigma_s = std::sqrt(2.0 * var_s2 + 0.25 * c2 / sbb_rest);
+          const double late = (0.5 * r.a - 0.5 * k_rest * options.speed_mps) / delay_sigma_s;
+          if (k_rest > 0.0 && late > 0.0) z2 = std::max(z2, late * late);
+        }
         if (z2 > worst_z2) worst_z2 = z2, worst_e = e, worst_row = static_cast<int>(i);
       }
     }

@@ -18,15 +18,17 @@ namespace {
 // squared misses. Three nearly collinear microphones and a false alarm fit a point on a circle
 // around their line as closely as four true stamps fit the sender, and a cluster of LOS /
 // wall-echo pairs fits a higher sender with a solved offset as closely as the LOS / floor-echo
-// pairs fit the sender; the other stamps of the emission do not follow the wrong point.
+// pairs fit the sender; the other stamps of the emission do not follow the wrong point. The last
+// key is the caller's: the supported stamps' squared misses in the consensus, the fit's own
+// squared residuals between clusters.
 struct FixRank {
   std::size_t mics = 0;
   int support_rows = 0;
-  double sum_sq_m2 = 0.0;
+  double tie_sum_sq_m2 = 0.0;
   [[nodiscard]] bool Beats(const FixRank& other) const {
     if (mics != other.mics) return mics > other.mics;
     if (support_rows != other.support_rows) return support_rows > other.support_rows;
-    return sum_sq_m2 < other.sum_sq_m2;
+    return tie_sum_sq_m2 < other.tie_sum_sq_m2;
   }
 };
 

@@ -400,7 +400,8 @@ LosIdentification IdentifyLos(std::span<const Vec3> receivers_m, const std::vect
       fix.position_m = start_m;
       fix.offset_m = start_offset_m;
     }
-    if (!options.final_test) break;
+    // The studentised residuals need the least-squares solution: no test at a kept start.
+    if (!options.final_test || fix.status != estimation::SolverStatus::kOk) break;
     const auto [worst, w] = WorstStudentisedResidual(mics, rho, fix.position_m, fix.offset_m, sigma_m);
     if (worst < 0 || !(w > options.window_sigmas)) break;
     if (static_cast<int>(rows.size()) - 1 < 3 + options.min_votes) return out;  // nothing consistent is verified

@@ -32,9 +32,11 @@
 //    emission; with two microphones it is Eq. 8.77), re-clustered and re-solved until t_0 settles.
 //    The least squares is robust (where the thesis is silent): one t_0 per emission (K_e
 //    eliminated), an emission more than 3 sigma from the others' t_0 and a row more than 3 sigma
-//    off its emission's fit left out, the sigma scaled by the Birge ratio of the emissions'
-//    scatter when above one (a wrong but self-consistent cluster in one emission otherwise pulls
-//    the window's t_0; measured in docs/results/acoustic.md).
+//    off its emission's fit left out, and with the microphones' heights a row whose delay
+//    exceeds the 2 z / c a floor echo can lag its LOS (z from its emission's K), the sigma
+//    scaled by the Birge ratio of the emissions' scatter when above one (a wrong but
+//    self-consistent cluster in one emission otherwise pulls the window's t_0; measured in
+//    docs/results/acoustic.md).
 //    Hypothesis scoring costs O(H E P_e log P_e) for H <= candidates hypotheses, E emissions,
 //    P_e pairs per emission. The refinement re-clusters until t_0 moves by less than a tenth of
 //    a stamp sigma (K hardly depends on t_0, so the search's hypothesis may be ~1 ms off).

@@ -112,8 +112,9 @@ struct GroundEchoFix {
   /// solved offset over c); empty without a fix.
   std::optional<double> sending_time_s;
   /// With sending_time estimated: the vote's t_0 (s, the stamps' time base) and its standard
-  /// deviation (s) as the vote reports them, before the fix uses them; set whenever the vote
-  /// found one, also when the emission then gets no fix.
+  /// deviation (s; 0 when the vote's refinement gave none) as the vote reports them, before the
+  /// fix uses them; set when the vote found t_0 with at least three microphones' pairs in this
+  /// emission, also when the emission then gets no fix.
   std::optional<double> voted_sending_time_s;
   double voted_sending_time_sigma_s = 0.0;
 };

@@ -100,7 +100,7 @@ struct LosIdentificationOptions {
   /// thumb D > F_0.5(p', m - p') (the thesis gives no number). F(3, 1) is heavy-tailed, and with
   /// pure noise the largest of the 4 distances is at least a chi2(1) variate, so 0.5 (threshold
   /// 1.71) is strict: in the tests' hall (sigma 0.1 m, biases >= 1 m) it keeps every NLOS stamp
-  /// out but misses 17 % of the LOS ones; 0.8 (threshold 13.1) misses 3 % and still admits ~0.
+  /// out but misses 17 % of the LOS ones; 0.8 (threshold 13.1) misses 4 % and still admits ~0.
   double cook_probability = 0.5;
   /// Half-width of the window of the vote (cook_voting false) around the fix's predicted stamp, in
   /// stamp sigmas, > 0. 3: a LOS stamp misses it with probability 0.3 % given an exact fix.
@@ -111,7 +111,9 @@ struct LosIdentificationOptions {
   /// the chosen stamps, which predicts far better than a triplet's (data snooping). The vote
   /// decides coarsely which stamps belong together; this test catches a stamp a few sigmas off (an
   /// echo whose path is a little longer) that fell inside the window of an imprecise triplet fix.
-  /// No fix when fewer than 3 + min_votes stamps would remain.
+  /// No fix when fewer than 3 + min_votes stamps would remain; no test when the refinement
+  /// failed (the closed-form start is kept). Its threshold is the vote's window_sigmas (one
+  /// consistency test, Eq. 5.3, at two fixes), not corrected for testing several stamps.
   bool final_test = true;
   /// Fewest votes (receivers beyond the triplet) for a fix, >= 0. 1: a triplet's fix alone is
   /// exact for any three stamps, so without one more receiver nothing is verified.
@@ -145,7 +147,8 @@ struct LosIdentification {
   std::vector<int> los_receivers;
   /// Per input receiver: the index (into that receiver's input stamps) of its LOS stamp, or -1.
   std::vector<int> los_stamp_index;
-  /// The winning triplet's receivers (-1 when !found).
+  /// The winning triplet's receivers (-1 when !found); the final test may have left one out of
+  /// los_receivers.
   std::array<int, 3> triplet{-1, -1, -1};
   /// Closed-form fixes that passed the causality test and were voted on.
   int candidates_evaluated = 0;
@@ -157,7 +160,7 @@ struct LosIdentification {
   int closed_form_solves = 0;
   /// The winner's votes (receivers beyond its triplet), before the final test.
   int votes = 0;
-  /// The winner's stamps left out by the final test (final_test).
+  /// The winner's stamps left out by the final test (final_test), also when that left no fix.
   int stamps_left_out = 0;
   /// A fix with at least min_votes votes exists.
   bool found = false;
