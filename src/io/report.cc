@@ -57,10 +57,9 @@ json GroupJson(const GroupSummary& g, const std::string& bound) {
   if (g.vdop) j["vdop"] = dop_json(*g.vdop);
   if (g.los_labels) {
     const auto& l = *g.los_labels;
-    const bool labelled = l.true_positives + l.false_positives > 0;
-    const bool direct = l.true_positives + l.false_negatives > 0;
-    j["los_labels"] = {{"precision", labelled ? json(l.precision) : json(nullptr)},
-                       {"recall", direct ? json(l.recall) : json(nullptr)},
+    const auto optional = [](std::optional<double> v) { return v ? json(*v) : json(nullptr); };
+    j["los_labels"] = {{"precision", optional(l.Precision())},
+                       {"recall", optional(l.Recall())},
                        {"true_positives", l.true_positives},
                        {"false_positives", l.false_positives},
                        {"false_negatives", l.false_negatives}};

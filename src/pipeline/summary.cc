@@ -79,7 +79,6 @@ GroupSummary SummarizeRuns(const std::string& name, std::span<const RunRecord* c
   std::vector<double> height_errors, hdops, vdops;
   double associations = 0.0, expected = 0.0, wall_rms = 0.0;
   int failures_1m = 0, failures_2m = 0;
-  std::optional<LosLabelStats> los;
   int epochs = 0, wall_runs = 0;
   std::size_t longest = 0;
   for (const RunRecord* run : runs) {
@@ -116,10 +115,8 @@ GroupSummary SummarizeRuns(const std::string& name, std::span<const RunRecord* c
         if (s.relative_error_m) relative.push_back(*s.relative_error_m);
         if (s.height_error_m) height_errors.push_back(*s.height_error_m);
         if (s.los_labels) {
-          if (!los) los.emplace();
-          los->true_positives += s.los_labels->true_positives;
-          los->false_positives += s.los_labels->false_positives;
-          los->false_negatives += s.los_labels->false_negatives;
+          if (!g.los_labels) g.los_labels.emplace();
+          *g.los_labels += *s.los_labels;
         }
         if (s.hdop) hdops.push_back(*s.hdop);
         if (s.vdop) vdops.push_back(*s.vdop);
@@ -150,13 +147,6 @@ GroupSummary SummarizeRuns(const std::string& name, std::span<const RunRecord* c
   }
   g.error = eval::ComputeErrorStats(errors);
   if (!height_errors.empty()) g.height_error = eval::ComputeErrorStats(height_errors);
-  if (los) {
-    const int labelled = los->true_positives + los->false_positives;
-    const int direct = los->true_positives + los->false_negatives;
-    los->precision = labelled > 0 ? static_cast<double>(los->true_positives) / labelled : 0.0;
-    los->recall = direct > 0 ? static_cast<double>(los->true_positives) / direct : 0.0;
-    g.los_labels = los;
-  }
   g.hdop = SummarizeDops(hdops);
   g.vdop = SummarizeDops(vdops);
   if (!errors.empty()) {

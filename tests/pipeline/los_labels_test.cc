@@ -31,12 +31,18 @@ TEST(CountLosLabels, CountsEachRecordOnce) {
   EXPECT_EQ(count->true_positives, 1);
   EXPECT_EQ(count->false_positives, 2);
   EXPECT_EQ(count->false_negatives, 1);
+  EXPECT_DOUBLE_EQ(count->Precision().value(), 1.0 / 3.0);
+  EXPECT_DOUBLE_EQ(count->Recall().value(), 0.5);
   // No fix: every record with a direct stamp is missed, nothing is labelled wrongly.
   const auto none = CountLosLabels(epoch, direct, {-1, -1, -1});
   ASSERT_TRUE(none.has_value());
   EXPECT_EQ(none->true_positives, 0);
   EXPECT_EQ(none->false_positives, 0);
   EXPECT_EQ(none->false_negatives, 2);
+  EXPECT_FALSE(none->Precision().has_value());  // nothing labelled: no precision, not 0
+  LosLabelCount sum = *count;
+  sum += *none;
+  EXPECT_DOUBLE_EQ(sum.Recall().value(), 0.25);
 }
 
 TEST(CountLosLabels, GivesNoCountWithoutLabelsOrWithMismatchedShapes) {

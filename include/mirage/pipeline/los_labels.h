@@ -11,11 +11,28 @@
 
 namespace mirage::pipeline {
 
-/// The labels of one epoch, counted per record (receiver).
+/// The labels of one epoch, or summed over many, counted per record (receiver).
 struct LosLabelCount {
   int true_positives = 0;   ///< the labelled stamp is the direct path
   int false_positives = 0;  ///< the labelled stamp is not (an echo, a delayed direct path, noise)
   int false_negatives = 0;  ///< the record has a direct stamp and the labelled one is not it
+
+  LosLabelCount& operator+=(const LosLabelCount& other) {
+    true_positives += other.true_positives;
+    false_positives += other.false_positives;
+    false_negatives += other.false_negatives;
+    return *this;
+  }
+  /// TP / (TP + FP); empty when nothing was labelled.
+  [[nodiscard]] std::optional<double> Precision() const {
+    const int labelled = true_positives + false_positives;
+    return labelled > 0 ? std::optional<double>(static_cast<double>(true_positives) / labelled) : std::nullopt;
+  }
+  /// TP / (TP + FN): of the direct stamps, the share labelled; empty without direct stamps.
+  [[nodiscard]] std::optional<double> Recall() const {
+    const int direct = true_positives + false_negatives;
+    return direct > 0 ? std::optional<double>(static_cast<double>(true_positives) / direct) : std::nullopt;
+  }
 };
 
 /// The method's labels (methods::StepOutput::los_stamps: per record of epoch.toas, the labelled

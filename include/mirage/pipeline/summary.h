@@ -59,15 +59,6 @@ struct HealthSummary {
   double largest_covariance_growth = 1.0;
 };
 
-/// A method's line-of-sight labels against the simulation's, over a group's epochs.
-struct LosLabelStats {
-  int true_positives = 0;
-  int false_positives = 0;
-  int false_negatives = 0;
-  double precision = 0.0;  ///< TP / (TP + FP); 0 without labels (the report: null)
-  double recall = 0.0;     ///< TP / (TP + FN): of the direct stamps, the share labelled; 0 without any (null)
-};
-
 /// Distribution of a dilution of precision over the epochs that have one.
 struct DopStats {
   std::size_t count = 0;
@@ -87,8 +78,9 @@ struct GroupSummary {
   std::optional<eval::ErrorStats> height_error;
   std::optional<DopStats> hdop;  ///< empty when no epoch has one
   std::optional<DopStats> vdop;
-  /// Methods that label stamps as line of sight, on simulations: their precision and recall.
-  std::optional<LosLabelStats> los_labels;
+  /// Methods that label stamps as line of sight, on simulations: the labels' counts over the
+  /// group's epochs (their Precision() and Recall()).
+  std::optional<LosLabelCount> los_labels;
   int diverged_runs = 0;   ///< runs with an agent diverged
   /// Fractions of the epochs with truth whose error exceeds 1 m and 2 m, an epoch without a fix
   /// counted as a failure (Bordoy 2020 Sec. 5.3: the failure rate of Fig. 5.5).
