@@ -112,6 +112,19 @@ std::vector<std::string> Validate(const SendingTimeVoteOptions& options) {
     problems.emplace_back("min_excess_m2 must be >= 0 and finite");
   }
   if (!std::isfinite(options.pile_tolerance_s)) problems.emplace_back("pile_tolerance_s must be finite");
+  if (!(options.ceiling_height_m >= 0.0 && std::isfinite(options.ceiling_height_m))) {
+    problems.emplace_back("ceiling_height_m must be >= 0 and finite");
+  } else if (options.ceiling_height_m > 0.0) {
+    if (options.mic_heights_m.empty() || !options.los_is_first_arrival) {
+      problems.emplace_back("ceiling_height_m needs mic_heights_m and los_is_first_arrival");
+    }
+    for (const double h : options.mic_heights_m) {
+      if (!(h < options.ceiling_height_m)) {
+        problems.emplace_back("ceiling_height_m must be above every microphone");
+        break;
+      }
+    }
+  }
   if (options.max_combinations < 1) problems.emplace_back("max_combinations must be >= 1");
   return problems;
 }
@@ -134,7 +147,14 @@ namespace {
 
 using PairTable = std::vector<std::vector<std::vector<PeakPair>>>;  // [emission][mic][pair]
 
-/// Chosen (mic -> pair index) per emission, -1 where none.
+/// What a selected pair's later stamp is: the floor echo, or the echo off the floor and then the
+/// ceiling (options.ceiling_height_m).
+enum PairKind : int { kFloor = 0, kFloorCeiling = 1, kKinds = 2 };
+
+/// A microphone's slot for a pair of one kind: each microphone has one per kind.
+std::size_t Slot(std::size_t mic, int kind) { return kKinds * mic + static_cast<std::size_t>(kind); }
+
+/// Chosen (slot -> pair index) per emission, -1 where none; Slot(m, kind) of microphone m.
 using Selection = std::vector<std::vector<int>>;
 
 /// The thesis's steps 4-6: each candidate stands for the interval t_0 +- w_k; the pile is the set
@@ -181,23 +201,31 @@ void ThesisPile(const std::vector<Candidate>& candidates, const PairTable& pairs
   vote->pile_size = static_cast<int>(size);
   selection->assign(pairs.size(), {});
   for (std::size_t e = 0; e < pairs.size(); ++e) {
-    (*selection)[e].assign(pairs[e].size(), -1);
+    (*selection)[e].assign(kKinds * pairs[e].size(), -1);
     for (std::size_t m = 0; m < pairs[e].size(); ++m) {
       const auto& v = votes[e][m];
       const auto best = std::max_element(v.begin(), v.end());  // first of equals: deterministic
-      if (best != v.end() && *best > 0) (*selection)[e][m] = static_cast<int>(best - v.begin());
+      if (best != v.end() && *best > 0) (*selection)[e][Slot(m, kFloor)] = static_cast<int>(best - v.begin());
     }
   }
 }
 
 /// K = (T_r - t)^2 - (T_L - t)^2 (s^2) of a pair under the hypothesis t, equal for every
-/// microphone of one emission (4 h_s h_m / c^2), and its tolerance.
+/// microphone of one emission (4 h_s h_m / c^2), and its tolerance. With the heights known it is
+/// kappa = 4 h_s / c^2 (s^2 / m), the same for both kinds of pair.
 struct KEntry {
   double k_s2 = 0.0;
   double tol_s2 = 0.0;
   int mic = 0;
   int pair = 0;
+  int kind = kFloor;
 };
+
+/// The offset of a floor-ceiling pair's K at microphone height h_m: 4 C (C - h_m) / c^2 (s^2).
+double FloorCeilingOffset(const SendingTimeVoteOptions& options, double mic_height_m) {
+  const double c = options.ceiling_height_m;
+  return 4.0 * c * (c - mic_height_m) / (options.speed_mps * options.speed_mps);
+}
 
 /// The plausible pairs of one emission under hypothesis t_s, sorted by K.
 std::vector<KEntry> KEntries(const std::vector<std::vector<PeakPair>>& mic_pairs, double t_s,
@@ -217,90 +245,139 @@ std::vector<KEntry> KEntries(const std::vector<std::vector<PeakPair>>& mic_pairs
       // dK/dT_r = 2 (T_r - t), dK/dT_L = -2 (T_L - t).
       const double sigma_k_s2 = 2.0 * options.stamp_sigma_s * std::hypot(los_s, ground_s);
       const double scale = heights ? 1.0 / MicHeight(options, m) : 1.0;
-      entries.push_back({scale * (ground_s * ground_s - los_s * los_s), scale * options.pile_sigmas * sigma_k_s2 + height_slack_s2,
-                         static_cast<int>(m), static_cast<int>(p)});
+      const double k_s2 = ground_s * ground_s - los_s * los_s;
+      entries.push_back({scale * k_s2, scale * options.pile_sigmas * sigma_k_s2 + height_slack_s2,
+                         static_cast<int>(m), static_cast<int>(p), kFloor});
+    }
+    // The same pairs read as (LOS, floor-ceiling echo): K = offset + C kappa (Validate: only
+    // with the heights and the first-arrival rule, so that every pair of a microphone shares
+    // its LOS stamp). Plausible as a sender's: 0 < kappa <= 4 max_sender_height_m / c^2.
+    if (options.ceiling_height_m <= 0.0) continue;
+    const double offset_s2 = FloorCeilingOffset(options, MicHeight(options, m));
+    const double max_kappa_s2_per_m = 4.0 * options.max_sender_height_m / c2;
+    for (std::size_t p = 0; p < mic_pairs[m].size(); ++p) {
+      const LosGroundStamps& s = mic_pairs[m][p].stamps;
+      if (mic_pairs[m][p].previous_s > t_s) continue;
+      const double los_s = s.los_s - t_s, ground_s = s.ground_s - t_s;
+      if (!(los_s > 0.0) || los_s * options.speed_mps > options.max_range_m) continue;
+      const double kappa = (ground_s * ground_s - los_s * los_s - offset_s2) / options.ceiling_height_m;
+      if (!(kappa > 0.0) || kappa > max_kappa_s2_per_m) continue;
+      const double sigma_k_s2 = 2.0 * options.stamp_sigma_s * std::hypot(los_s, ground_s);
+      entries.push_back({kappa, options.pile_sigmas * sigma_k_s2 / options.ceiling_height_m, static_cast<int>(m),
+                         static_cast<int>(p), kFloorCeiling});
     }
   }
   std::sort(entries.begin(), entries.end(), [](const KEntry& a, const KEntry& b) { return a.k_s2 < b.k_s2; });
   return entries;
 }
 
-/// The microphones whose pairs share K with entry `centre` (within its tolerance): per
-/// microphone its pair nearest the centre (-1 if none) in *members, their number, and in *cost
-/// their truncated squared residuals (MSAC-like).
-int ClusterAround(const std::vector<KEntry>& entries, const KEntry& centre, std::vector<int>* members,
-                  std::vector<double>* distance_s2, double* cost) {
+/// A K cluster's size: its pairs (rows of the least squares), its microphones, its floor pairs.
+struct ClusterSize {
+  int rows = 0;
+  int mics = 0;
+  int floor_rows = 0;
+  /// Most pairs; among equals most floor pairs; then the smaller cost.
+  [[nodiscard]] bool Beats(const ClusterSize& o, double cost, double other_cost) const {
+    if (rows != o.rows) return rows > o.rows;
+    if (floor_rows != o.floor_rows) return floor_rows > o.floor_rows;
+    return cost < other_cost;
+  }
+};
+
+/// The pairs sharing K with entry `centre` (within its tolerance): per slot (microphone and
+/// kind) its pair nearest the centre (-1 if none) in *members, their count, and in *cost their
+/// truncated squared residuals (MSAC-like).
+ClusterSize ClusterAround(const std::vector<KEntry>& entries, const KEntry& centre, std::vector<int>* members,
+                          std::vector<double>* distance_s2, double* cost) {
   std::fill(members->begin(), members->end(), -1);
   std::fill(distance_s2->begin(), distance_s2->end(), std::numeric_limits<double>::infinity());
-  int count = 0;
+  ClusterSize size;
   const auto lo = std::lower_bound(entries.begin(), entries.end(), centre.k_s2 - centre.tol_s2,
                                    [](const KEntry& a, double v) { return a.k_s2 < v; });
   for (auto it = lo; it != entries.end() && it->k_s2 <= centre.k_s2 + centre.tol_s2; ++it) {
-    const auto m = static_cast<std::size_t>(it->mic);
+    const std::size_t slot = Slot(static_cast<std::size_t>(it->mic), it->kind);
+    const std::size_t other = Slot(static_cast<std::size_t>(it->mic), kKinds - 1 - it->kind);
+    // One stamp is not both echoes (with a wide tolerance both readings of a pair can join).
+    if ((*members)[other] == it->pair) continue;
     const double d_s2 = std::abs(it->k_s2 - centre.k_s2);
-    if ((*members)[m] < 0) ++count;
-    if (d_s2 < (*distance_s2)[m]) {
-      (*distance_s2)[m] = d_s2;
-      (*members)[m] = it->pair;
+    if ((*members)[slot] < 0) {
+      ++size.rows;
+      if (it->kind == kFloor) ++size.floor_rows;
+      // A microphone counts once, by whichever of its slots joins first.
+      if ((*members)[other] < 0) ++size.mics;
+    }
+    if (d_s2 < (*distance_s2)[slot]) {
+      (*distance_s2)[slot] = d_s2;
+      (*members)[slot] = it->pair;
     }
   }
-  *cost = 0.0;
-  for (std::size_t m = 0; m < members->size(); ++m) {
-    if ((*members)[m] >= 0) *cost += std::pow((*distance_s2)[m] / centre.tol_s2, 2);
+  // Where the floor-ceiling echo (two reflections, a longer path) is heard, the floor echo (one
+  // reflection, shorter) mostly is too. A microphone's floor-ceiling pair without its floor pair is left out of the
+  // cluster: counted, such pairs let a reading of the floor pairs as floor-ceiling ones (a
+  // sender lower by (C - h) (C + z) / C) compete through chance stamps in its floor
+  // slots, in rooms that return no second order; kept as rows, the chance ones bias t_0 there
+  // (both measured: docs/results/acoustic.md).
+  for (std::size_t slot = kFloorCeiling; slot < members->size(); slot += kKinds) {
+    if ((*members)[slot] < 0 || (*members)[slot - kFloorCeiling] >= 0) continue;
+    (*members)[slot] = -1;
+    --size.rows;
+    --size.mics;
   }
-  return count;
+  *cost = 0.0;
+  for (std::size_t slot = 0; slot < members->size(); ++slot) {
+    if ((*members)[slot] >= 0) *cost += std::pow((*distance_s2)[slot] / centre.tol_s2, 2);
+  }
+  return size;
 }
 
-/// The largest set of microphones of one emission whose pairs share K under hypothesis t_s:
-/// per microphone the pair index (or -1). Returns the number of microphones in it.
-int BestKCluster(const std::vector<std::vector<PeakPair>>& mic_pairs, double t_s,
-                 const SendingTimeVoteOptions& options, std::vector<int>* chosen, double* cost) {
+/// The largest set of pairs of one emission sharing K under hypothesis t_s: per slot the pair
+/// index (or -1). Returns its size.
+ClusterSize BestKCluster(const std::vector<std::vector<PeakPair>>& mic_pairs, double t_s,
+                         const SendingTimeVoteOptions& options, std::vector<int>* chosen, double* cost) {
   const std::vector<KEntry> entries = KEntries(mic_pairs, t_s, options);
-  chosen->assign(mic_pairs.size(), -1);
-  int best_count = 0;
+  chosen->assign(kKinds * mic_pairs.size(), -1);
+  ClusterSize best;
   *cost = 0.0;
-  std::vector<double> distance_s2(mic_pairs.size());
-  std::vector<int> members(mic_pairs.size());
+  std::vector<double> distance_s2(kKinds * mic_pairs.size());
+  std::vector<int> members(kKinds * mic_pairs.size());
   for (const KEntry& centre : entries) {
     double centre_cost = 0.0;
-    const int count = ClusterAround(entries, centre, &members, &distance_s2, &centre_cost);
-    // Most microphones; among equals the tightest.
-    if (count > best_count || (count == best_count && centre_cost < *cost)) {
-      best_count = count;
+    const ClusterSize size = ClusterAround(entries, centre, &members, &distance_s2, &centre_cost);
+    if (size.Beats(best, centre_cost, *cost)) {
+      best = size;
       *cost = centre_cost;
       *chosen = members;
     }
   }
-  return best_count;
+  return best;
 }
 
-/// Every distinct K cluster of at least three microphones of one emission under t_s, most
-/// microphones first, among equals the tightest.
+/// Every distinct K cluster of at least three microphones of one emission under t_s, ranked as
+/// BestKCluster ranks them (most pairs first), among equals the tightest.
 std::vector<std::vector<int>> KClusters(const std::vector<std::vector<PeakPair>>& mic_pairs, double t_s,
                                         const SendingTimeVoteOptions& options) {
   const std::vector<KEntry> entries = KEntries(mic_pairs, t_s, options);
   struct Ranked {
-    int count;
+    ClusterSize size;
     double cost;
     std::vector<int> members;
   };
   std::vector<Ranked> clusters;
-  std::vector<double> distance_s2(mic_pairs.size());
-  std::vector<int> members(mic_pairs.size());
+  std::vector<double> distance_s2(kKinds * mic_pairs.size());
+  std::vector<int> members(kKinds * mic_pairs.size());
   for (const KEntry& centre : entries) {
     double cost = 0.0;
-    const int count = ClusterAround(entries, centre, &members, &distance_s2, &cost);
-    if (count < 3) continue;
+    const ClusterSize size = ClusterAround(entries, centre, &members, &distance_s2, &cost);
+    if (size.mics < 3) continue;
     const auto same = std::find_if(clusters.begin(), clusters.end(), [&](const Ranked& r) { return r.members == members; });
     if (same == clusters.end()) {
-      clusters.push_back({count, cost, members});
+      clusters.push_back({size, cost, members});
     } else {
       same->cost = std::min(same->cost, cost);
     }
   }
-  std::stable_sort(clusters.begin(), clusters.end(), [](const Ranked& a, const Ranked& b) {
-    return a.count > b.count || (a.count == b.count && a.cost < b.cost);
-  });
+  std::stable_sort(clusters.begin(), clusters.end(),
+                   [](const Ranked& a, const Ranked& b) { return a.size.Beats(b.size, a.cost, b.cost); });
   std::vector<std::vector<int>> out;
   for (auto& r : clusters) out.push_back(std::move(r.members));
   return out;
@@ -310,9 +387,13 @@ std::vector<std::vector<int>> KClusters(const std::vector<std::vector<PeakPair>>
 /// number of microphones; with two it is 8.77), relative to the hypothesis t_s so that the right
 /// side is small (no cancellation): a = 2 d, b = h (the microphone's height, 1 without heights),
 /// y = d (T_r - t_s + T_L - t_s), weight w = 1 / var(row) with var = 4 sigma^2 ((T_r - t_s)^2 +
-/// (T_L - t_s)^2) (dy/dT_r = 2 (T_r - t_0), dy/dT_L = -2 (T_L - t_0)).
+/// (T_L - t_s)^2) (dy/dT_r = 2 (T_r - t_0), dy/dT_L = -2 (T_L - t_0)). A floor-ceiling pair's
+/// row has b = C and its offset 4 C (C - h) / c^2 taken from y. max_delay_extra_s: what its delay
+/// may exceed a floor echo's bound 2 z / c by (0 for a floor pair; 2 (C - h) / c for a floor-
+/// ceiling pair, whose delay 4 C (C - h + z) / (c (R + R_L)) <= 2 (C - h + z) / c, R + R_L >= 2 C).
 struct SendingTimeRow {
   double a = 0.0, b = 0.0, y = 0.0, w = 0.0;
+  double max_delay_extra_s = 0.0;
 };
 
 /// t_0 of the window from the selected pairs, robust to the picks the K clusters let through.
@@ -346,12 +427,21 @@ std::optional<std::pair<double, double>> RefineSendingTime(const PairTable& pair
   std::vector<std::vector<SendingTimeRow>> rows(pairs.size());
   for (std::size_t e = 0; e < pairs.size(); ++e) {
     for (std::size_t m = 0; m < pairs[e].size(); ++m) {
-      if (selection[e][m] < 0) continue;
-      const LosGroundStamps& s = pairs[e][m][static_cast<std::size_t>(selection[e][m])].stamps;
-      const double u_r = s.ground_s - t_s, u_l = s.los_s - t_s;
-      const double delay_s = u_r - u_l;
-      rows[e].push_back({2.0 * delay_s, options.mic_heights_m.empty() ? 1.0 : MicHeight(options, m),
-                         delay_s * (u_r + u_l), 1.0 / (4.0 * var_s2 * (u_r * u_r + u_l * u_l))});
+      for (int kind = kFloor; kind < kKinds; ++kind) {
+        const int p = selection[e][Slot(m, kind)];
+        if (p < 0) continue;
+        const LosGroundStamps& s = pairs[e][m][static_cast<std::size_t>(p)].stamps;
+        const double u_r = s.ground_s - t_s, u_l = s.los_s - t_s;
+        const double delay_s = u_r - u_l;
+        SendingTimeRow row{2.0 * delay_s, options.mic_heights_m.empty() ? 1.0 : MicHeight(options, m),
+                           delay_s * (u_r + u_l), 1.0 / (4.0 * var_s2 * (u_r * u_r + u_l * u_l))};
+        if (kind == kFloorCeiling) {
+          row.b = options.ceiling_height_m;
+          row.y -= FloorCeilingOffset(options, MicHeight(options, m));
+          row.max_delay_extra_s = 2.0 * (options.ceiling_height_m - MicHeight(options, m)) / options.speed_mps;
+        }
+        rows[e].push_back(row);
+      }
     }
   }
   const bool heights = !options.mic_heights_m.empty();  // the delay bound needs them
@@ -412,7 +502,7 @@ std::optional<std::pair<double, double>> RefineSendingTime(const PairTable& pair
         if (heights && sbb_rest > 0.0) {
           const double k_rest = (est.sby - r.w * r.b * r.y - t0 * (est.sab - r.w * r.a * r.b)) / sbb_rest;
           const double delay_sigma_s = std::sqrt(2.0 * var_s2 + 0.25 * c2 / sbb_rest);
-          const double late = (0.5 * r.a - 0.5 * k_rest * options.speed_mps) / delay_sigma_s;
+          const double late = (0.5 * r.a - r.max_delay_extra_s - 0.5 * k_rest * options.speed_mps) / delay_sigma_s;
           if (k_rest > 0.0 && late > 0.0) z2 = std::max(z2, late * late);
         }
         if (z2 > worst_z2) worst_z2 = z2, worst_e = e, worst_row = static_cast<int>(i);
@@ -432,7 +522,7 @@ std::optional<std::pair<double, double>> RefineSendingTime(const PairTable& pair
 
 /// A consensus hypothesis's support.
 struct Score {
-  int redundant = -1;  // inlier microphones beyond two, summed over emissions
+  int redundant = -1;  // inlier pairs beyond two, summed over emissions
   double cost = 0.0;   // their truncated squared residuals
   int inliers = 0;
   [[nodiscard]] bool Beats(const Score& o) const {
@@ -446,14 +536,14 @@ Score ScoreHypothesis(const PairTable& pairs, double t_s, const SendingTimeVoteO
   chosen->assign(pairs.size(), {});
   for (std::size_t e = 0; e < pairs.size(); ++e) {
     double cost = 0.0;
-    const int count = BestKCluster(pairs[e], t_s, options, &(*chosen)[e], &cost);
-    if (count < 3) {
+    const ClusterSize size = BestKCluster(pairs[e], t_s, options, &(*chosen)[e], &cost);
+    if (size.mics < 3) {
       std::fill((*chosen)[e].begin(), (*chosen)[e].end(), -1);
       continue;
     }
-    score.redundant += count - 2;
+    score.redundant += size.rows - 2;
     score.cost += cost;
-    score.inliers += count;
+    score.inliers += size.rows;
   }
   return score;
 }
@@ -464,7 +554,7 @@ Score RefineHypothesis(double t_s, const PairTable& pairs, const SendingTimeVote
                        Selection* selection);
 
 /// Consensus: every candidate t_0 (deduplicated to one per stamp_sigma_s) is a hypothesis; its
-/// score is, summed over emissions, the microphones beyond two whose (L, r) pairs share K (two
+/// score is, summed over emissions, the pairs beyond two that share K (two
 /// always do, for the hypotheses they generate). The best hypothesis's clusters are the chosen
 /// stamps; t_0 is then refined (RefineHypothesis).
 void Consensus(std::vector<Candidate> candidates, const PairTable& pairs, const SendingTimeVoteOptions& options,
@@ -530,15 +620,22 @@ PairTable PairsOfEmissions(std::span<const EmissionStamps> emissions, const Send
   return pairs;
 }
 
-/// One emission's chosen stamps' indices from its selected pairs.
+/// One emission's chosen stamps' indices from its selected pairs (both kinds of a microphone
+/// share its LOS stamp: the first arrival, see ceiling_height_m).
 std::vector<MicStampChoice> ChosenStamps(const std::vector<std::vector<PeakPair>>& mic_pairs,
                                          const std::vector<int>& selected) {
   std::vector<MicStampChoice> chosen(mic_pairs.size());
   for (std::size_t m = 0; m < mic_pairs.size(); ++m) {
-    const int p = selected[m];
-    if (p < 0) continue;
-    const PeakPair& pair = mic_pairs[m][static_cast<std::size_t>(p)];
-    chosen[m] = {pair.los_index, pair.ground_index};
+    if (const int p = selected[Slot(m, kFloor)]; p >= 0) {
+      const PeakPair& pair = mic_pairs[m][static_cast<std::size_t>(p)];
+      chosen[m].los_index = pair.los_index;
+      chosen[m].ground_index = pair.ground_index;
+    }
+    if (const int p = selected[Slot(m, kFloorCeiling)]; p >= 0) {
+      const PeakPair& pair = mic_pairs[m][static_cast<std::size_t>(p)];
+      chosen[m].los_index = pair.los_index;
+      chosen[m].floor_ceiling_index = pair.ground_index;
+    }
   }
   return chosen;
 }

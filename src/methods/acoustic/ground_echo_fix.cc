@@ -68,6 +68,12 @@ const core::OptionsDescriptor<GroundEchoOptions>& GroundEchoOptionsDescriptor() 
     d.Number(&O::max_noise_gain, {.key = "max_noise_gain",
                                   .range = ValueRange::Above(0.0),
                                   .doc = "The vote drops 4-tuples whose t_0 noise gain (Eq. 8.77) exceeds this. 20."});
+    d.Boolean(&O::floor_ceiling_echoes,
+              {.key = "floor_ceiling_echoes",
+               .doc = "With the ceiling known: the echo off the floor and then the ceiling is a second row of the "
+                      "vote's (t_0, sender height) and, with echoes, a row of the fix (the microphone mirrored in "
+                      "the ceiling, then the floor); false: the floor echo only, as the thesis (its pairs with the "
+                      "LOS then compete with the floor pairs in the vote)."});
     return d;
   }();
   return descriptor;
@@ -114,6 +120,9 @@ GroundEchoFixer::GroundEchoFixer(std::vector<Vec3> mics_m, double floor_z_m, dou
     const double below_ceiling_m = *ceiling_z_m - lowest_m;
     vote_.min_excess_m2 = 4.0 * below_ceiling_m * (lowest_m - floor_z_m_);
   }
+  if (options_.floor_ceiling_echoes && ceiling_z_m && *ceiling_z_m > highest_m) {
+    vote_.ceiling_height_m = *ceiling_z_m - floor_z_m_;
+  }
 }
 
 std::optional<estimation::SolverFix> GroundEchoFixer::Solve(const std::vector<Vec3>& receivers_m,
@@ -148,19 +157,35 @@ std::optional<GroundEchoFixer::SelectionFit> GroundEchoFixer::FitSelection(
   std::vector<Vec3> receivers_m;
   std::vector<double> values_m;
   std::vector<int> row_mic;  // per row: its microphone
+  // Per row: whether it is a floor-ceiling row. Such a row is left out alone when it misses (a
+  // wrong pick of a late, weak echo says nothing about the microphone's LOS and floor rows); the
+  // microphones are tested on their LOS and floor rows.
+  std::vector<bool> row_optional;
   for (std::size_t m = 0; m < mics_m_.size(); ++m) {
     const auto& c = chosen[m];
     if (c.los_index < 0) continue;
     receivers_m.push_back(mics_m_[m]);
     values_m.push_back(c_mps_ * (stamps_s[m][static_cast<std::size_t>(c.los_index)] - t0_s.value_or(0.0)));
     row_mic.push_back(static_cast<int>(m));
+    row_optional.push_back(false);
     if (options_.echoes && c.ground_index >= 0) {
       receivers_m.emplace_back(mics_m_[m].x(), mics_m_[m].y(), 2.0 * floor_z_m_ - mics_m_[m].z());
       values_m.push_back(c_mps_ * (stamps_s[m][static_cast<std::size_t>(c.ground_index)] - t0_s.value_or(0.0)));
       row_mic.push_back(static_cast<int>(m));
+      row_optional.push_back(false);
+    }
+    // The floor-ceiling echo (only chosen with the ceiling known): the microphone mirrored in the
+    // ceiling (its last reflection), then in the floor.
+    if (options_.echoes && c.floor_ceiling_index >= 0 && ceiling_z_m_) {
+      receivers_m.emplace_back(mics_m_[m].x(), mics_m_[m].y(),
+                               2.0 * floor_z_m_ - (2.0 * *ceiling_z_m_ - mics_m_[m].z()));
+      values_m.push_back(c_mps_ * (stamps_s[m][static_cast<std::size_t>(c.floor_ceiling_index)] - t0_s.value_or(0.0)));
+      row_mic.push_back(static_cast<int>(m));
+      row_optional.push_back(true);
     }
   }
   if (receivers_m.empty()) return std::nullopt;
+  std::vector<bool> row_on(receivers_m.size(), true);  // optional rows not yet left out
   const bool offset_unknown = !t0_s.has_value();
   const std::size_t unknowns = offset_unknown ? 4 : 3;
   // The fallback start: below the chosen microphones' centroid, halfway to the floor.
@@ -182,7 +207,7 @@ std::optional<GroundEchoFixer::SelectionFit> GroundEchoFixer::FitSelection(
     rx_m.clear();
     z_m.clear();
     for (std::size_t r = 0; r < receivers_m.size(); ++r) {
-      if (!use[static_cast<std::size_t>(row_mic[r])]) continue;
+      if (!use[static_cast<std::size_t>(row_mic[r])] || !row_on[r]) continue;
       rx_m.push_back(receivers_m[r]);
       z_m.push_back(values_m[r]);
     }
@@ -207,13 +232,18 @@ std::optional<GroundEchoFixer::SelectionFit> GroundEchoFixer::FitSelection(
     }
     return f;
   };
-  // Each microphone's largest row residual at a fix (m); an offset solved on a subset applies
-  // to every row (it is the sender's).
+  // A row's residual at a fix (m); an offset solved on a subset applies to every row (it is the
+  // sender's).
+  const auto residual_of = [&](const estimation::SolverFix& f, std::size_t r) {
+    return std::abs(values_m[r] - (f.position_m - receivers_m[r]).norm() - f.offset_m);
+  };
+  // Each microphone's largest residual of its LOS and floor rows at a fix (m).
   const auto mic_residuals_m = [&](const estimation::SolverFix& f) {
     std::vector<double> worst_m(mics_m_.size(), 0.0);
     for (std::size_t r = 0; r < receivers_m.size(); ++r) {
+      if (row_optional[r]) continue;
       auto& worst = worst_m[static_cast<std::size_t>(row_mic[r])];
-      worst = std::max(worst, std::abs(values_m[r] - (f.position_m - receivers_m[r]).norm() - f.offset_m));
+      worst = std::max(worst, residual_of(f, r));
     }
     return worst_m;
   };
@@ -248,6 +278,8 @@ std::optional<GroundEchoFixer::SelectionFit> GroundEchoFixer::FitSelection(
     covered += rows_per_mic[smallest_set];
   }
   if (offset_unknown) smallest_set = std::max<std::size_t>(smallest_set, std::min<std::size_t>(3, mics.size()));
+  // One microphone's receivers (itself and its images) lie on one vertical line: no horizontal fix.
+  smallest_set = std::max<std::size_t>(smallest_set, std::min<std::size_t>(2, mics.size()));
   std::vector<bool> used(mics_m_.size(), false);
   for (const int m : row_mic) used[static_cast<std::size_t>(m)] = true;
   std::optional<estimation::SolverFix> fix = fit(used, last_m_);
@@ -301,12 +333,14 @@ std::optional<GroundEchoFixer::SelectionFit> GroundEchoFixer::FitSelection(
     }
   }
   // Then, within the consensus, the microphone with the largest residual beyond 3 sigma is left
-  // out (both its rows: a wrong LOS pick makes its echo wrong too) and the fix repeated, while
-  // rows for the unknowns remain.
+  // out (all its rows: a wrong LOS pick makes its echoes wrong too), or the floor-ceiling row
+  // when its own residual is the largest, and the fix repeated, while rows for the unknowns
+  // remain.
   for (;;) {
     if (!fix) return std::nullopt;
     const auto residual_m = mic_residuals_m(*fix);
     int worst = -1;
+    int worst_row = -1;
     double worst_m = gate_m;
     for (std::size_t m = 0; m < residual_m.size(); ++m) {
       if (used[m] && residual_m[m] > worst_m) {
@@ -314,8 +348,17 @@ std::optional<GroundEchoFixer::SelectionFit> GroundEchoFixer::FitSelection(
         worst = static_cast<int>(m);
       }
     }
-    if (worst < 0) break;
-    used[static_cast<std::size_t>(worst)] = false;
+    for (std::size_t r = 0; r < receivers_m.size(); ++r) {
+      if (!row_optional[r] || !row_on[r] || !used[static_cast<std::size_t>(row_mic[r])]) continue;
+      if (const double e_m = residual_of(*fix, r); e_m > worst_m) worst_m = e_m, worst_row = static_cast<int>(r);
+    }
+    if (worst_row >= 0) {
+      row_on[static_cast<std::size_t>(worst_row)] = false;
+    } else if (worst >= 0) {
+      used[static_cast<std::size_t>(worst)] = false;
+    } else {
+      break;
+    }
     fix = fit(used, fix->position_m);
   }
   if (static_cast<std::size_t>(std::count(used.begin(), used.end(), true)) <= smallest_set) {
@@ -325,7 +368,7 @@ std::optional<GroundEchoFixer::SelectionFit> GroundEchoFixer::FitSelection(
   Vec3 sum_u = Vec3::Zero();  // the rows' unit vectors receiver -> sender
   for (std::size_t r = 0; r < receivers_m.size(); ++r) {
     const auto m = static_cast<std::size_t>(row_mic[r]);
-    if (!used[m]) continue;
+    if (!used[m] || !row_on[r]) continue;
     const bool is_echo = r > 0 && row_mic[r - 1] == row_mic[r];
     (is_echo ? out.echo_rows : out.los_rows) += 1;
     const Vec3 leg_m = fix->position_m - receivers_m[r];
@@ -356,10 +399,16 @@ GroundEchoFixer::StampSupport GroundEchoFixer::SupportAt(const Vec3& position_m,
     if (index >= 0) out.rows += 1, out.sum_sq_m2 += nearest_m * nearest_m;
     return index;
   };
+  const bool floor_ceiling = vote_.ceiling_height_m > 0.0 && ceiling_z_m_;
   for (std::size_t m = 0; m < mics_m_.size(); ++m) {
     const Vec3 mirrored_m(mics_m_[m].x(), mics_m_[m].y(), 2.0 * floor_z_m_ - mics_m_[m].z());
     const int los = explained(stamps_s[m], (position_m - mics_m_[m]).norm(), -1);
-    if (los >= 0) explained(stamps_s[m], (position_m - mirrored_m).norm(), los);
+    if (los < 0) continue;
+    explained(stamps_s[m], (position_m - mirrored_m).norm(), los);
+    if (floor_ceiling) {
+      const Vec3 twice_mirrored_m(mics_m_[m].x(), mics_m_[m].y(), 2.0 * floor_z_m_ - (2.0 * *ceiling_z_m_ - mics_m_[m].z()));
+      explained(stamps_s[m], (position_m - twice_mirrored_m).norm(), los);
+    }
   }
   return out;
 }
@@ -461,8 +510,22 @@ GroundEchoFix GroundEchoFixer::Process(const core::Epoch& epoch) {
   //      vote's count: only the clusters as large as the chosen one are tried.
   const bool absolute_ranges = options_.sending_time == "known";
   const auto& stamps = voted.back().mic_stamps_s;
-  // Ranked as in the consensus (FixRank), by the fit's own sum of squared residuals last.
-  const auto better = [](const SelectionFit& a, const SelectionFit& b) {
+  // With the vote's t_0 as a prior (step 5): whether a fix's solved offset agrees with it
+  // within 3 sigma (the prior's gate below). A selection that reads the floor-ceiling echoes as
+  // floor echoes fits a sender higher by (C - h) (C + z) / h with a later offset: nearly
+  // consistent as pseudo-ranges, not with the vote's t_0.
+  const bool prior_check = vote_prior && vote->t0_sigma_s > 0.0;
+  const auto agrees = [&](const SelectionFit& f) {
+    if (!prior_check) return true;
+    const double sigma_m = c_mps_ * vote->t0_sigma_s;
+    return estimation::InsideChi2Gate(c_mps_ * vote->t0_s - f.fix.offset_m,
+                                      f.fix.covariance_m2(3, 3) + sigma_m * sigma_m, 9.0);
+  };
+  // Ranked by that agreement, then as in the consensus (FixRank), by the fit's own sum of
+  // squared residuals last.
+  const auto better = [&](const SelectionFit& a, const SelectionFit& b) {
+    const bool agree_a = agrees(a), agree_b = agrees(b);
+    if (agree_a != agree_b) return agree_a;
     const auto rank = [](const SelectionFit& f) {
       return FixRank{static_cast<std::size_t>(f.mics), f.support_rows, f.sum_sq_m2};
     };
@@ -471,8 +534,11 @@ GroundEchoFix GroundEchoFixer::Process(const core::Epoch& epoch) {
   std::optional<SelectionFit> best = FitSelection(chosen, stamps, t0_s);
   for (const auto& alternative : vote->alternatives) {
     const auto mics = std::count_if(alternative.begin(), alternative.end(), [](const auto& c) { return c.los_index >= 0; });
-    // Most microphones first: none after this one can win.
-    if ((!absolute_ranges && mics < heard) || (best && mics < best->mics)) break;
+    // Only as many microphones as the vote's and the best fix's, while the best fix agrees with
+    // the prior (the alternatives come most pairs first, which with floor-ceiling pairs is not
+    // most microphones first); every one while it does not.
+    const bool settled = best && agrees(*best);
+    if (settled && ((!absolute_ranges && mics < heard) || mics < best->mics)) continue;
     auto fit = FitSelection(alternative, stamps, t0_s);
     if (fit && (!best || better(*fit, *best))) {
       best = std::move(fit);

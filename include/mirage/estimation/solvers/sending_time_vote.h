@@ -140,6 +140,20 @@ struct SendingTimeVoteOptions {
   /// (L, r) pair, as the thesis enumerates them; right with dense false alarms, but then the
   /// K clusters of other image pairs compete with the true one.
   bool los_is_first_arrival = false;
+  /// kConsensus with known microphone heights and los_is_first_arrival: the ceiling's height
+  /// above the floor C (m, above every microphone); 0 (default): not modelled. The echo off the
+  /// floor and then the ceiling (the microphone's image at h_m - 2 C) pairs with the LOS as
+  /// well: its K is 4 C (C - h_m) / c^2 + C kappa with the floor echo's kappa = 4 h_s / c^2, so
+  /// such a pair is a second row of the same emission's (t_0, kappa) (b = C, an offset 4 C (C -
+  /// h_m) / c^2) instead of a floor-echo pair of a sender at C (C - h_m + h_s) / h_m, whose
+  /// cluster would compete with the true one and, through the microphones' unequal heights,
+  /// shift t_0 (measured: docs/results/acoustic.md, ch. 8). A cluster is then ranked by its rows
+  /// (each microphone's floor pair and floor-ceiling pair), among equals by its floor rows, then
+  /// by cost. A floor-ceiling pair counts only beside its microphone's floor pair (the weaker,
+  /// longer echo is rarely heard without the stronger one): otherwise, in a room without second-
+  /// order echoes, the floor pairs read as floor-ceiling ones (a lower sender) gather chance
+  /// stamps as their floor pairs and compete.
+  double ceiling_height_m = 0.0;
   /// The vote refuses inputs with more 4-tuples than this (>= 1), see CountVoteCombinations.
   /// 5e6: ~0.1 s of work and ~100 MB of candidates at most.
   std::size_t max_combinations = 5'000'000;
@@ -159,6 +173,8 @@ std::size_t CountVoteCombinations(std::span<const EmissionStamps> emissions, con
 struct MicStampChoice {
   int los_index = -1;
   int ground_index = -1;
+  /// The echo off the floor and then the ceiling (only with ceiling_height_m), -1 if none.
+  int floor_ceiling_index = -1;
 };
 
 /// The winner.
@@ -166,7 +182,8 @@ struct SendingTimeVote {
   /// t_0 (s, the stamps' origin): the pile's median (kThesisPile) or the least-squares solution
   /// over the inliers (kConsensus).
   double t0_s = 0.0;
-  /// kThesisPile: the pile's candidates; kConsensus: the inlier microphones over all emissions.
+  /// kThesisPile: the pile's candidates; kConsensus: the inlier pairs over all emissions (one
+  /// per microphone, two where a floor-ceiling pair joins its floor pair).
   int pile_size = 0;
   /// kConsensus: the standard deviation of t0_s from the robust least squares, scaled by the
   /// emissions' scatter when it exceeds the stamps' sigma (s); 0 for kThesisPile. An emission or
@@ -179,9 +196,9 @@ struct SendingTimeVote {
   /// inlier pair (kConsensus); -1 where none.
   std::vector<std::vector<MicStampChoice>> chosen;
   /// kConsensus: the last emission's other K clusters of at least three microphones at t0_s,
-  /// most microphones first, among equals the tightest. Each is as consistent in t_0 and K as
-  /// `chosen` (a wall echo and its floor echo share K like the LOS and the floor echo, see
-  /// los_is_first_arrival): the stamps alone cannot rank them, a position fit can.
+  /// ranked as the winner (most pairs first), among equals the tightest. Each is as consistent
+  /// in t_0 and K as `chosen` (a wall echo and its floor echo share K like the LOS and the floor
+  /// echo, see los_is_first_arrival): the stamps alone cannot rank them, a position fit can.
   std::vector<std::vector<MicStampChoice>> alternatives;
 };
 

@@ -21,7 +21,12 @@
 //     and is excluded by the excess bound 4 (C - h_m) h_m (valid while the sender is higher above
 //     the floor than the microphones are below the ceiling); and the rule that the LOS is each
 //     microphone's first arrival after t_0 (every pair of horizontal-plane or wall images, e.g.
-//     (ceiling echo, floor echo), satisfies Eq. 8.74-8.77 with the same t_0 and K).
+//     (ceiling echo, floor echo), satisfies Eq. 8.74-8.77 with the same t_0 and K). With the
+//     ceiling known (`floor_ceiling_echoes`, beyond the thesis) the echo off the floor and then
+//     the ceiling is modelled too: paired with the LOS it looks like the floor echo of a sender
+//     higher by (C - h) (C + z) / h, so its pairs formed clusters of their own that competed
+//     with the floor pairs; now it is a second row of the same (t_0, sender height)
+//     (SendingTimeVoteOptions::ceiling_height_m).
 //  3. The sending time: "estimated", the vote's t_0 (Eq. 8.77-8.79), by default a prior on an
 //     offset solved with the fix (`vote_prior`, step 5), else plugged in; "known", the records'
 //     emission time (core::ToaStamps::emission_s: a synchronised sender or a reference system,
@@ -30,16 +35,25 @@
 //     R_TD = D R D^T: Shin & Sung, Sec. 8.3; the thesis's "TDOA" rows).
 //  4. The fix: Levenberg-Marquardt (Eq. 8.80-8.82; the thesis uses gradient descent and Gauss-
 //     Newton) on the LOS rows |S - M_i| = c (T_L,i - t_0) and, with echoes, the floor-echo rows
-//     |S - M'_i| = c (T_r,i - t_0), from the last fix, else below the microphones' centroid.
+//     |S - M'_i| = c (T_r,i - t_0) and the floor-ceiling rows (the microphone mirrored in the
+//     ceiling, then the floor: (x, y, 2 f - (2 C - z))), from the last fix, else below the
+//     microphones' centroid. A floor-ceiling row beyond 3 sigma is left out alone; the
+//     microphones are tested on their LOS and floor rows.
 //     When a row lies beyond 3 sigma, the largest consensus of microphones (every smallest set
 //     with rows for the unknowns solved, at least three with a solved offset; the microphones
 //     within 3 sigma of its fix counted, ties to the fix explaining more of all the emission's
 //     stamps; Fischler & Bolles) is refitted, then the worst microphone beyond 3 sigma left out
 //     while rows remain; a fix of no more microphones than the smallest set fits them whatever
 //     their stamps and is no fix. The vote's other K clusters are fitted too (all with a known
-//     t_0, whose rows are absolute ranges; only those as large as the chosen one otherwise) and
-//     the fix keeping the most microphones wins (ties: the one explaining more of the emission's
-//     stamps). With LOS rows only, coplanar microphones fit the sender's mirror image in their
+//     t_0, whose rows are absolute ranges; only those as large as the chosen one otherwise,
+//     unless the best fix so far contradicts the vote's t_0 as a prior, below) and the fix
+//     keeping the most microphones wins (ties: the one explaining more of the emission's
+//     stamps). With the vote's t_0 as a prior, a fix whose solved offset lies beyond 3 sigma of
+//     it (the prior's own gate in step 5) ranks after every fix that agrees: pseudo-ranges
+//     alone fit the floor-ceiling echoes read as floor echoes (a sender higher by
+//     (C - h) (C + z) / h, 0.4-0.5 m in the hall, and a later offset) nearly as well as the true
+//     reading.
+//     With LOS rows only, coplanar microphones fit the sender's mirror image in their
 //     plane as well: a fix above the ceiling restarts from that mirror; a fix more than 3 of its
 //     vertical sigmas below the floor is no fix.
 //  5. Its CRLB and DOPs at the fix: (H^T R^-1 H)^-1 of the rows used, the range model (t_0 given)
@@ -52,10 +66,9 @@
 //     the data: on the vote's sigma, and where the prior is left out (beyond 3 sigma of the
 //     solved offset) they are the pseudo-range model's.
 // An emission without three microphones in the vote's cluster, or with fewer rows than unknowns,
-// or an unverified fix, or a degenerate or unconverged solve, has no fix. Left open:
-// second-order echoes (floor-ceiling, wall-floor) form further consistent clusters that the
-// first-arrival rule does not remove (docs/results/acoustic.md: order 2 in the example's last
-// grid line).
+// or an unverified fix, or a degenerate or unconverged solve, has no fix. Left open: the other
+// second-order echoes (wall-floor, floor-wall) and higher orders are not modelled
+// (docs/results/acoustic.md: order 2 in the example's grid).
 #pragma once
 
 #include <deque>
@@ -93,6 +106,12 @@ struct GroundEchoOptions {
   double max_sender_height_m = 2.5;
   /// The vote drops 4-tuples whose t_0 noise gain exceeds this (Eq. 8.77's conditioning), > 0. 20.
   double max_noise_gain = 20.0;
+  /// With the ceiling known: the echo off the floor and then the ceiling is modelled in the vote
+  /// (a second row of the floor echo's (t_0, kappa); SendingTimeVoteOptions::ceiling_height_m)
+  /// and, with `echoes`, is a row of the fix (the microphone mirrored in the ceiling, then the
+  /// floor). false: only the floor echo, as the thesis (its (LOS, floor-ceiling) pairs then
+  /// compete with the floor pairs in the vote).
+  bool floor_ceiling_echoes = true;
 };
 
 /// The section's descriptor (keys, units, ranges, docs).
@@ -144,6 +163,7 @@ class GroundEchoFixer {
   /// @param clock_drift_ppm   the sender clock's largest rate error (ppm), >= 0
   /// @param ceiling_z_m       the ceiling's height (m) when the room has one: the vote then
   ///                          excludes the LOS / ceiling-echo pairs (SendingTimeVoteOptions::min_excess_m2)
+  ///                          and, with options.floor_ceiling_echoes, models the floor-ceiling echo
   GroundEchoFixer(std::vector<Vec3> mics_m, double floor_z_m, double speed_mps, double range_sigma_m,
                   double interval_s, double clock_drift_ppm, const GroundEchoOptions& options,
                   std::optional<double> ceiling_z_m = std::nullopt);
@@ -204,9 +224,10 @@ class GroundEchoFixer {
 
   /// The stamps a hypothesis explains, over all of an emission's stamps (not only a selection's):
   /// per microphone a stamp within 3 sigma of its LOS arrival and, when there is one, a stamp
-  /// within 3 sigma of its floor-echo arrival.
+  /// within 3 sigma of its floor-echo arrival (and of its floor-ceiling arrival when the vote
+  /// models it).
   struct StampSupport {
-    int rows = 0;             // LOS and floor-echo stamps explained
+    int rows = 0;             // LOS and echo stamps explained
     double sum_sq_m2 = 0.0;   // of the nearest stamps' misses
   };
   /// @param origin_m  c t_0 (t_0 given) or the solved offset: a stamp t lies at range c t - origin_m
