@@ -51,7 +51,16 @@ std::vector<PeakPair> PairsOf(const std::vector<double>& stamps_s, double max_de
 /// Microphone m's height above the floor (m), from options.mic_heights_m (non-empty).
 double MicHeight(const SendingTimeVoteOptions& options, std::size_t m) { return options.mic_heights_m.at(m); }
 
-double MaxEchoDelay(const SendingTimeVoteOptions& options) { return 2.0 * options.max_sender_height_m / options.speed_mps; }
+/// The longest delay of a pair's later stamp after its LOS (s): 2 h_s / c for a floor echo; with
+/// the floor-ceiling echo modelled 2 (C - h_m + h_s) / c (see SendingTimeRow), h_m the lowest
+/// microphone's height.
+double MaxEchoDelay(const SendingTimeVoteOptions& options) {
+  double extra_m = 0.0;
+  if (options.ceiling_height_m > 0.0 && !options.mic_heights_m.empty()) {
+    extra_m = options.ceiling_height_m - *std::min_element(options.mic_heights_m.begin(), options.mic_heights_m.end());
+  }
+  return 2.0 * (options.max_sender_height_m + extra_m) / options.speed_mps;
+}
 
 /// Both pairs are physically possible for this t_0 (see VoteSendingTime).
 bool Plausible(const LosGroundStamps& p, double t0_s, const SendingTimeVoteOptions& options) {
@@ -219,6 +228,7 @@ struct KEntry {
   int mic = 0;
   int pair = 0;
   int kind = kFloor;
+  double later_s = 0.0;  ///< the pair's later stamp (its echo)
 };
 
 /// The offset of a floor-ceiling pair's K at microphone height h_m: 4 C (C - h_m) / c^2 (s^2).
@@ -247,7 +257,7 @@ std::vector<KEntry> KEntries(const std::vector<std::vector<PeakPair>>& mic_pairs
       const double scale = heights ? 1.0 / MicHeight(options, m) : 1.0;
       const double k_s2 = ground_s * ground_s - los_s * los_s;
       entries.push_back({scale * k_s2, scale * options.pile_sigmas * sigma_k_s2 + height_slack_s2,
-                         static_cast<int>(m), static_cast<int>(p), kFloor});
+                         static_cast<int>(m), static_cast<int>(p), kFloor, s.ground_s});
     }
     // The same pairs read as (LOS, floor-ceiling echo): K = offset + C kappa (Validate: only
     // with the heights and the first-arrival rule, so that every pair of a microphone shares
@@ -264,7 +274,7 @@ std::vector<KEntry> KEntries(const std::vector<std::vector<PeakPair>>& mic_pairs
       if (!(kappa > 0.0) || kappa > max_kappa_s2_per_m) continue;
       const double sigma_k_s2 = 2.0 * options.stamp_sigma_s * std::hypot(los_s, ground_s);
       entries.push_back({kappa, options.pile_sigmas * sigma_k_s2 / options.ceiling_height_m, static_cast<int>(m),
-                         static_cast<int>(p), kFloorCeiling});
+                         static_cast<int>(p), kFloorCeiling, s.ground_s});
     }
   }
   std::sort(entries.begin(), entries.end(), [](const KEntry& a, const KEntry& b) { return a.k_s2 < b.k_s2; });
@@ -291,14 +301,13 @@ ClusterSize ClusterAround(const std::vector<KEntry>& entries, const KEntry& cent
                           std::vector<double>* distance_s2, double* cost) {
   std::fill(members->begin(), members->end(), -1);
   std::fill(distance_s2->begin(), distance_s2->end(), std::numeric_limits<double>::infinity());
+  std::vector<double> later_s(members->size(), 0.0);
   ClusterSize size;
   const auto lo = std::lower_bound(entries.begin(), entries.end(), centre.k_s2 - centre.tol_s2,
                                    [](const KEntry& a, double v) { return a.k_s2 < v; });
   for (auto it = lo; it != entries.end() && it->k_s2 <= centre.k_s2 + centre.tol_s2; ++it) {
     const std::size_t slot = Slot(static_cast<std::size_t>(it->mic), it->kind);
     const std::size_t other = Slot(static_cast<std::size_t>(it->mic), kKinds - 1 - it->kind);
-    // One stamp is not both echoes (with a wide tolerance both readings of a pair can join).
-    if ((*members)[other] == it->pair) continue;
     const double d_s2 = std::abs(it->k_s2 - centre.k_s2);
     if ((*members)[slot] < 0) {
       ++size.rows;
@@ -309,19 +318,25 @@ ClusterSize ClusterAround(const std::vector<KEntry>& entries, const KEntry& cent
     if (d_s2 < (*distance_s2)[slot]) {
       (*distance_s2)[slot] = d_s2;
       (*members)[slot] = it->pair;
+      later_s[slot] = it->later_s;
     }
   }
-  // Where the floor-ceiling echo (two reflections, a longer path) is heard, the floor echo (one
-  // reflection, shorter) mostly is too. A microphone's floor-ceiling pair without its floor pair is left out of the
-  // cluster: counted, such pairs let a reading of the floor pairs as floor-ceiling ones (a
-  // sender lower by (C - h) (C + z) / C) compete through chance stamps in its floor
-  // slots, in rooms that return no second order; kept as rows, the chance ones bias t_0 there
-  // (both measured: docs/results/acoustic.md).
+  // A microphone's floor-ceiling pair is left out of the cluster
+  //  - without its floor pair: where the floor-ceiling echo (two reflections, a longer path) is
+  //    heard, the floor echo (one, shorter) mostly is too. Counted, such pairs let a reading of
+  //    the floor pairs as floor-ceiling ones (a sender lower by (C - h) (C + z) / C) compete
+  //    through chance stamps in its floor slots, in rooms that return no second order; kept as
+  //    rows, the chance ones bias t_0 there (both measured: docs/results/acoustic.md);
+  //  - unless its stamp comes after the floor echo's: the floor-ceiling image (h_m - 2 C) is
+  //    farther than the floor image (-h_m) from any sender (this also keeps one stamp from
+  //    being both echoes).
   for (std::size_t slot = kFloorCeiling; slot < members->size(); slot += kKinds) {
-    if ((*members)[slot] < 0 || (*members)[slot - kFloorCeiling] >= 0) continue;
+    if ((*members)[slot] < 0) continue;
+    const std::size_t floor = slot - kFloorCeiling;
+    if ((*members)[floor] >= 0 && later_s[slot] > later_s[floor]) continue;
     (*members)[slot] = -1;
     --size.rows;
-    --size.mics;
+    if ((*members)[floor] < 0) --size.mics;
   }
   *cost = 0.0;
   for (std::size_t slot = 0; slot < members->size(); ++slot) {
@@ -394,7 +409,41 @@ std::vector<std::vector<int>> KClusters(const std::vector<std::vector<PeakPair>>
 struct SendingTimeRow {
   double a = 0.0, b = 0.0, y = 0.0, w = 0.0;
   double max_delay_extra_s = 0.0;
+  int mic = 0;
+  /// Its LOS stamp relative to t_s (s): a microphone's floor and floor-ceiling rows share it, so
+  /// their y are correlated, cov = 4 sigma^2 u_L^2 (dy/dT_L = -2 u_L in both).
+  double u_l_s = 0.0;
 };
+
+/// The weighted sums of one emission's rows for the least squares of (t_0, K_e): sum over rows of
+/// a W a, a W b, b W b, a W y, b W y, with W the inverse covariance of the rows, block-diagonal
+/// per microphone (a floor and a floor-ceiling row share the LOS stamp; consecutive rows of one
+/// microphone form its block).
+struct RowSums {
+  double saa = 0.0, sab = 0.0, sbb = 0.0, say = 0.0, sby = 0.0;
+};
+RowSums SumRows(const std::vector<SendingTimeRow>& rows, double var_s2) {
+  RowSums s;
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const SendingTimeRow& r = rows[i];
+    if (i + 1 < rows.size() && rows[i + 1].mic == r.mic) {
+      const SendingTimeRow& q = rows[i + 1];
+      const double v1 = 1.0 / r.w, v2 = 1.0 / q.w, c = 4.0 * var_s2 * r.u_l_s * q.u_l_s;
+      const double det = v1 * v2 - c * c;
+      const double w11 = v2 / det, w22 = v1 / det, w12 = -c / det;
+      const auto form = [&](double x1, double x2, double z1, double z2) {
+        return w11 * x1 * z1 + w12 * (x1 * z2 + x2 * z1) + w22 * x2 * z2;
+      };
+      s.saa += form(r.a, q.a, r.a, q.a), s.sab += form(r.a, q.a, r.b, q.b), s.sbb += form(r.b, q.b, r.b, q.b);
+      s.say += form(r.a, q.a, r.y, q.y), s.sby += form(r.b, q.b, r.y, q.y);
+      ++i;
+      continue;
+    }
+    s.saa += r.w * r.a * r.a, s.sab += r.w * r.a * r.b, s.sbb += r.w * r.b * r.b;
+    s.say += r.w * r.a * r.y, s.sby += r.w * r.b * r.y;
+  }
+  return s;
+}
 
 /// t_0 of the window from the selected pairs, robust to the picks the K clusters let through.
 /// Per emission the rows are reduced to one estimate of t_0 (K_e eliminated: a Schur complement
@@ -435,6 +484,8 @@ std::optional<std::pair<double, double>> RefineSendingTime(const PairTable& pair
         const double delay_s = u_r - u_l;
         SendingTimeRow row{2.0 * delay_s, options.mic_heights_m.empty() ? 1.0 : MicHeight(options, m),
                            delay_s * (u_r + u_l), 1.0 / (4.0 * var_s2 * (u_r * u_r + u_l * u_l))};
+        row.mic = static_cast<int>(m);
+        row.u_l_s = u_l;
         if (kind == kFloorCeiling) {
           row.b = options.ceiling_height_m;
           row.y -= FloorCeilingOffset(options, MicHeight(options, m));
@@ -457,11 +508,7 @@ std::optional<std::pair<double, double>> RefineSendingTime(const PairTable& pair
     int used = 0;
     for (std::size_t e = 0; e < rows.size(); ++e) {
       if (rows[e].size() < 2) continue;  // K_e undetermined
-      double saa = 0.0, sab = 0.0, sbb = 0.0, say = 0.0, sby = 0.0;
-      for (const auto& r : rows[e]) {
-        saa += r.w * r.a * r.a, sab += r.w * r.a * r.b, sbb += r.w * r.b * r.b;
-        say += r.w * r.a * r.y, sby += r.w * r.b * r.y;
-      }
+      const auto [saa, sab, sbb, say, sby] = SumRows(rows[e], var_s2);
       const double info = saa - sab * sab / sbb;
       // The delays do not vary with the heights (or only by rounding): no t_0.
       if (!(info > 1e-12 * saa)) continue;
@@ -498,9 +545,12 @@ std::optional<std::pair<double, double>> RefineSendingTime(const PairTable& pair
         // emission's other rows (a late high-leverage row would raise its own bound); the
         // delay's sigma: its two stamps' and the bound's (that K's variance at this t_0). A
         // K that is not positive is no sender's: the emission test handles that emission.
-        const double sbb_rest = est.sbb - r.w * r.b * r.b;
+        std::vector<SendingTimeRow> rest = rows[e];
+        rest.erase(rest.begin() + static_cast<std::ptrdiff_t>(i));
+        const RowSums rest_sums = SumRows(rest, var_s2);
+        const double sbb_rest = rest_sums.sbb;
         if (heights && sbb_rest > 0.0) {
-          const double k_rest = (est.sby - r.w * r.b * r.y - t0 * (est.sab - r.w * r.a * r.b)) / sbb_rest;
+          const double k_rest = (rest_sums.sby - t0 * rest_sums.sab) / sbb_rest;
           const double delay_sigma_s = std::sqrt(2.0 * var_s2 + 0.25 * c2 / sbb_rest);
           const double late = (0.5 * r.a - r.max_delay_extra_s - 0.5 * k_rest * options.speed_mps) / delay_sigma_s;
           if (k_rest > 0.0 && late > 0.0) z2 = std::max(z2, late * late);

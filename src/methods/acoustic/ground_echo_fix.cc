@@ -387,14 +387,15 @@ GroundEchoFixer::StampSupport GroundEchoFixer::SupportAt(const Vec3& position_m,
                                                         const std::vector<std::vector<double>>& stamps_s) const {
   const double gate_m = 3.0 * sigma_m_;
   StampSupport out;
-  // The index of the stamp nearest to range_m within the gate, other than `taken` (-1: none); its
-  // miss is added.
-  const auto explained = [&](const std::vector<double>& list_s, double range_m, int taken) {
+  // The index of the stamp nearest to range_m within the gate, other than `taken` and
+  // `also_taken` (-1: none); its miss is added.
+  const auto explained = [&](const std::vector<double>& list_s, double range_m, int taken, int also_taken = -1) {
     double nearest_m = gate_m;
     int index = -1;
     for (std::size_t i = 0; i < list_s.size(); ++i) {
       const double miss_m = std::abs(c_mps_ * list_s[i] - origin_m - range_m);
-      if (static_cast<int>(i) != taken && miss_m <= nearest_m) nearest_m = miss_m, index = static_cast<int>(i);
+      const bool free = static_cast<int>(i) != taken && static_cast<int>(i) != also_taken;
+      if (free && miss_m <= nearest_m) nearest_m = miss_m, index = static_cast<int>(i);
     }
     if (index >= 0) out.rows += 1, out.sum_sq_m2 += nearest_m * nearest_m;
     return index;
@@ -404,10 +405,10 @@ GroundEchoFixer::StampSupport GroundEchoFixer::SupportAt(const Vec3& position_m,
     const Vec3 mirrored_m(mics_m_[m].x(), mics_m_[m].y(), 2.0 * floor_z_m_ - mics_m_[m].z());
     const int los = explained(stamps_s[m], (position_m - mics_m_[m]).norm(), -1);
     if (los < 0) continue;
-    explained(stamps_s[m], (position_m - mirrored_m).norm(), los);
+    const int floor = explained(stamps_s[m], (position_m - mirrored_m).norm(), los);
     if (floor_ceiling) {
       const Vec3 twice_mirrored_m(mics_m_[m].x(), mics_m_[m].y(), 2.0 * floor_z_m_ - (2.0 * *ceiling_z_m_ - mics_m_[m].z()));
-      explained(stamps_s[m], (position_m - twice_mirrored_m).norm(), los);
+      explained(stamps_s[m], (position_m - twice_mirrored_m).norm(), los, floor);
     }
   }
   return out;
@@ -534,11 +535,11 @@ GroundEchoFix GroundEchoFixer::Process(const core::Epoch& epoch) {
   std::optional<SelectionFit> best = FitSelection(chosen, stamps, t0_s);
   for (const auto& alternative : vote->alternatives) {
     const auto mics = std::count_if(alternative.begin(), alternative.end(), [](const auto& c) { return c.los_index >= 0; });
-    // Only as many microphones as the vote's and the best fix's, while the best fix agrees with
-    // the prior (the alternatives come most pairs first, which with floor-ceiling pairs is not
-    // most microphones first); every one while it does not.
-    const bool settled = best && agrees(*best);
-    if (settled && ((!absolute_ranges && mics < heard) || mics < best->mics)) continue;
+    // Only as many microphones as the vote's and the best fix's (the alternatives come most
+    // pairs first, which with floor-ceiling pairs is not most microphones first); every one
+    // while the best fix contradicts the prior.
+    const bool contradicted = best && !agrees(*best);
+    if (!contradicted && ((!absolute_ranges && mics < heard) || (best && mics < best->mics))) continue;
     auto fit = FitSelection(alternative, stamps, t0_s);
     if (fit && (!best || better(*fit, *best))) {
       best = std::move(fit);

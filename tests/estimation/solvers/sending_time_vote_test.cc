@@ -600,6 +600,86 @@ TEST(VoteSendingTime, FloorCeilingEchoesOutvoteTheirReadingAsFloorEchoes) {
   }
 }
 
+TEST(VoteSendingTimeAt, FloorCeilingRowsAddToTheSendingTimesInformation) {
+  // Noise-free LOS, floor and floor-ceiling stamps at every microphone: the floor-ceiling rows
+  // join the least squares (their delay exceeds a floor echo's bound 2 z / c by up to
+  // 2 (C - h) / c, which the delay test allows), so t_0's sigma is smaller than from the floor
+  // rows alone; their LOS stamp is shared with the floor rows (correlated rows), so it is not
+  // halved.
+  const std::vector<Vec3> mics = NineMics(false);
+  const double t0_s = 0.0123;
+  core::Rng rng(33);
+  std::vector<EmissionStamps> emissions;
+  for (const Vec3& sender : Senders()) {
+    emissions.push_back(SimulateSecondOrder(mics, sender, kCeilingM, t0_s, 0.0, 0.0, 0, rng).stamps);
+  }
+  SendingTimeVoteOptions floor_only = KnownGeometry(mics);
+  SendingTimeVoteOptions both = floor_only;
+  both.ceiling_height_m = kCeilingM;
+  const auto a = VoteSendingTimeAt(emissions, t0_s, floor_only);
+  const auto b = VoteSendingTimeAt(emissions, t0_s, both);
+  ASSERT_TRUE(a.has_value());
+  ASSERT_TRUE(b.has_value());
+  EXPECT_NEAR(b->t0_s, t0_s, 1e-9);
+  EXPECT_EQ(b->pile_size, 2 * a->pile_size);  // every microphone's two pairs
+  EXPECT_LT(b->t0_sigma_s, 0.9 * a->t0_sigma_s);
+  EXPECT_GT(b->t0_sigma_s, 0.5 * a->t0_sigma_s);
+}
+
+TEST(VoteSendingTimeAt, AFloorCeilingRowMayLagItsLosBeyondAFloorEchosBound) {
+  // Senders right below microphones: there the floor echo lags the LOS by exactly 2 z / c, the
+  // floor-ceiling echo by 2 (C - h + z) / c, beyond the floor echo's bound. The delay test must
+  // allow that (2 (C - h) / c more): t_0's sigma with those microphones' floor-ceiling stamps is
+  // smaller than without them.
+  const std::vector<Vec3> mics = NineMics(false);
+  const double t0_s = 0.0123;
+  core::Rng rng(35);
+  std::vector<EmissionStamps> with, without;
+  for (std::size_t e = 0; e < 6; ++e) {
+    const Vec3& above = mics[e];
+    const Vec3 sender(above.x(), above.y(), 1.2 + 0.05 * static_cast<double>(e));
+    with.push_back(SimulateSecondOrder(mics, sender, kCeilingM, t0_s, 0.0, 0.0, 0, rng).stamps);
+    without.push_back(with.back());
+    without.back().mic_stamps_s[e].pop_back();  // its floor-ceiling stamp
+  }
+  SendingTimeVoteOptions options = KnownGeometry(mics);
+  options.ceiling_height_m = kCeilingM;
+  const auto a = VoteSendingTimeAt(with, t0_s, options);
+  const auto b = VoteSendingTimeAt(without, t0_s, options);
+  ASSERT_TRUE(a.has_value());
+  ASSERT_TRUE(b.has_value());
+  EXPECT_NEAR(a->t0_s, t0_s, 1e-9);
+  EXPECT_LT(a->t0_sigma_s, b->t0_sigma_s * (1.0 - 1e-6));
+}
+
+TEST(VoteSendingTime, OneStampIsNeverBothEchoes) {
+  // A tolerance wide enough (stamps' sigma 2 ms) that a pair's floor and floor-ceiling readings
+  // fall in one cluster: the floor-ceiling stamp must come after the floor echo's, so no
+  // microphone's floor-ceiling pick repeats its floor pick.
+  const std::vector<Vec3> mics = NineMics(false);
+  core::Rng rng(34);
+  std::vector<EmissionStamps> emissions;
+  for (const Vec3& sender : Senders()) {
+    emissions.push_back(SimulateSecondOrder(mics, sender, kCeilingM, 0.0123, 0.0, 0.0, 0, rng).stamps);
+    for (auto& stamps : emissions.back().mic_stamps_s) stamps.pop_back();  // LOS and floor echo only
+  }
+  SendingTimeVoteOptions options = KnownGeometry(mics);
+  options.ceiling_height_m = kCeilingM;
+  options.stamp_sigma_s = 2e-3;
+  const auto vote = VoteSendingTimeAt(emissions, 0.0123, options);
+  ASSERT_TRUE(vote.has_value());
+  int floor_picks = 0;
+  for (const auto& emission : vote->chosen) {
+    for (const auto& c : emission) {
+      floor_picks += c.ground_index >= 0;
+      if (c.floor_ceiling_index >= 0) {
+        EXPECT_NE(c.floor_ceiling_index, c.ground_index);
+      }
+    }
+  }
+  EXPECT_GT(floor_picks, 0);
+}
+
 TEST(VoteSendingTime, InARoomWithoutSecondOrderTheFloorEchoesAreNotReadAsFloorCeilingOnes) {
   // LOS and floor echo only, noise-free, plus at three microphones a stamp where a floor echo
   // would be if the floor echoes were floor-ceiling ones (a sender lower by
