@@ -626,6 +626,43 @@ TEST(VoteSendingTimeAt, FloorCeilingRowsAddToTheSendingTimesInformation) {
   EXPECT_GT(b->t0_sigma_s, 0.5 * a->t0_sigma_s);
 }
 
+TEST(VoteSendingTimeAt, ItsSigmaIsTheGeneralisedLeastSquaresOneWithTheSharedLosStamp) {
+  // One noise-free emission with LOS, floor and floor-ceiling stamps at nine microphones: t_0's
+  // sigma is that of the generalised least squares of 2 d t_0 + b kappa = y (b = h_m for a floor
+  // row, C for a floor-ceiling row), the two rows of a microphone correlated through their LOS
+  // stamp (cov 4 sigma^2 u_L^2, var 4 sigma^2 (u_r^2 + u_L^2)), computed here from the stamps.
+  const std::vector<Vec3> mics = NineMics(false);
+  const double t0_s = 0.0123, sigma_s = 44e-6;
+  core::Rng rng(36);
+  const auto emission = SimulateSecondOrder(mics, Vec3(4.2, 3.3, 1.25), kCeilingM, t0_s, 0.0, 0.0, 0, rng);
+  SendingTimeVoteOptions options = KnownGeometry(mics);
+  options.ceiling_height_m = kCeilingM;
+  options.stamp_sigma_s = sigma_s;
+  const auto vote = VoteSendingTimeAt(std::vector<EmissionStamps>{emission.stamps}, t0_s, options);
+  ASSERT_TRUE(vote.has_value());
+  ASSERT_EQ(vote->pile_size, 18);
+  // The normal matrix [[Saa, Sab], [Sab, Sbb]] of (t_0, kappa), per microphone a 2 x 2 block.
+  double saa = 0.0, sab = 0.0, sbb = 0.0;
+  for (std::size_t m = 0; m < mics.size(); ++m) {
+    const auto& stamps = emission.stamps.mic_stamps_s[m];
+    const double u_l = stamps[0] - t0_s, u_f = stamps[1] - t0_s, u_fc = stamps[2] - t0_s;
+    const double a[2] = {2.0 * (u_f - u_l), 2.0 * (u_fc - u_l)};
+    const double b[2] = {mics[m].z(), kCeilingM};
+    const double v1 = 4.0 * sigma_s * sigma_s * (u_f * u_f + u_l * u_l);
+    const double v2 = 4.0 * sigma_s * sigma_s * (u_fc * u_fc + u_l * u_l);
+    const double c = 4.0 * sigma_s * sigma_s * u_l * u_l;
+    const double det = v1 * v2 - c * c;
+    const double w[2][2] = {{v2 / det, -c / det}, {-c / det, v1 / det}};
+    for (int i = 0; i < 2; ++i) {
+      for (int j = 0; j < 2; ++j) {
+        saa += a[i] * w[i][j] * a[j], sab += a[i] * w[i][j] * b[j], sbb += b[i] * w[i][j] * b[j];
+      }
+    }
+  }
+  const double expected_sigma_s = 1.0 / std::sqrt(saa - sab * sab / sbb);
+  EXPECT_NEAR(vote->t0_sigma_s, expected_sigma_s, 1e-9 * expected_sigma_s);
+}
+
 TEST(VoteSendingTimeAt, AFloorCeilingRowMayLagItsLosBeyondAFloorEchosBound) {
   // Senders right below microphones: there the floor echo lags the LOS by exactly 2 z / c, the
   // floor-ceiling echo by 2 (C - h + z) / c, beyond the floor echo's bound. The delay test must
