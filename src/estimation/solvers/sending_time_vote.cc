@@ -245,37 +245,34 @@ std::vector<KEntry> KEntries(const std::vector<std::vector<PeakPair>>& mic_pairs
   // With the microphones' heights known, K / h_m = 4 h_s / c^2 is shared exactly instead.
   const bool heights = !options.mic_heights_m.empty();
   const double height_slack_s2 = heights ? 0.0 : 4.0 * options.max_sender_height_m * options.mic_height_spread_m / c2;
-  std::vector<KEntry> entries;
+  // The pairs read as (LOS, floor-ceiling echo) too: K = offset + C kappa (Validate: only with
+  // the heights and the first-arrival rule, so that every pair of a microphone shares its LOS
+  // stamp), plausible as a sender's for 0 < kappa <= 4 max_sender_height_m / c^2.
+  const bool floor_ceiling = options.ceiling_height_m > 0.0;
+  const double max_kappa_s2_per_m = 4.0 * options.max_sender_height_m / c2;
+  std::vector<KEntry> entries, floor_ceiling_entries;
   for (std::size_t m = 0; m < mic_pairs.size(); ++m) {
+    const double offset_s2 = floor_ceiling ? FloorCeilingOffset(options, MicHeight(options, m)) : 0.0;
+    floor_ceiling_entries.clear();
     for (std::size_t p = 0; p < mic_pairs[m].size(); ++p) {
       const LosGroundStamps& s = mic_pairs[m][p].stamps;
-      if (!Plausible(s, t_s, options)) continue;
       if (options.los_is_first_arrival && mic_pairs[m][p].previous_s > t_s) continue;
       const double los_s = s.los_s - t_s, ground_s = s.ground_s - t_s;
+      const double k_s2 = ground_s * ground_s - los_s * los_s;
       // dK/dT_r = 2 (T_r - t), dK/dT_L = -2 (T_L - t).
       const double sigma_k_s2 = 2.0 * options.stamp_sigma_s * std::hypot(los_s, ground_s);
-      const double scale = heights ? 1.0 / MicHeight(options, m) : 1.0;
-      const double k_s2 = ground_s * ground_s - los_s * los_s;
-      entries.push_back({scale * k_s2, scale * options.pile_sigmas * sigma_k_s2 + height_slack_s2,
-                         static_cast<int>(m), static_cast<int>(p), kFloor, s.ground_s});
-    }
-    // The same pairs read as (LOS, floor-ceiling echo): K = offset + C kappa (Validate: only
-    // with the heights and the first-arrival rule, so that every pair of a microphone shares
-    // its LOS stamp). Plausible as a sender's: 0 < kappa <= 4 max_sender_height_m / c^2.
-    if (options.ceiling_height_m <= 0.0) continue;
-    const double offset_s2 = FloorCeilingOffset(options, MicHeight(options, m));
-    const double max_kappa_s2_per_m = 4.0 * options.max_sender_height_m / c2;
-    for (std::size_t p = 0; p < mic_pairs[m].size(); ++p) {
-      const LosGroundStamps& s = mic_pairs[m][p].stamps;
-      if (mic_pairs[m][p].previous_s > t_s) continue;
-      const double los_s = s.los_s - t_s, ground_s = s.ground_s - t_s;
-      if (!(los_s > 0.0) || los_s * options.speed_mps > options.max_range_m) continue;
-      const double kappa = (ground_s * ground_s - los_s * los_s - offset_s2) / options.ceiling_height_m;
+      if (Plausible(s, t_s, options)) {
+        const double scale = heights ? 1.0 / MicHeight(options, m) : 1.0;
+        entries.push_back({scale * k_s2, scale * options.pile_sigmas * sigma_k_s2 + height_slack_s2,
+                           static_cast<int>(m), static_cast<int>(p), kFloor, s.ground_s});
+      }
+      if (!floor_ceiling || !(los_s > 0.0) || los_s * options.speed_mps > options.max_range_m) continue;
+      const double kappa = (k_s2 - offset_s2) / options.ceiling_height_m;
       if (!(kappa > 0.0) || kappa > max_kappa_s2_per_m) continue;
-      const double sigma_k_s2 = 2.0 * options.stamp_sigma_s * std::hypot(los_s, ground_s);
-      entries.push_back({kappa, options.pile_sigmas * sigma_k_s2 / options.ceiling_height_m, static_cast<int>(m),
-                         static_cast<int>(p), kFloorCeiling, s.ground_s});
+      floor_ceiling_entries.push_back({kappa, options.pile_sigmas * sigma_k_s2 / options.ceiling_height_m,
+                                       static_cast<int>(m), static_cast<int>(p), kFloorCeiling, s.ground_s});
     }
+    entries.insert(entries.end(), floor_ceiling_entries.begin(), floor_ceiling_entries.end());
   }
   std::sort(entries.begin(), entries.end(), [](const KEntry& a, const KEntry& b) { return a.k_s2 < b.k_s2; });
   return entries;
@@ -422,11 +419,14 @@ struct SendingTimeRow {
 struct RowSums {
   double saa = 0.0, sab = 0.0, sbb = 0.0, say = 0.0, sby = 0.0;
 };
-RowSums SumRows(const std::vector<SendingTimeRow>& rows, double var_s2) {
+/// `skip`: a row left out (the leave-one-out sums); a microphone has at most two rows.
+RowSums SumRows(const std::vector<SendingTimeRow>& rows, double var_s2,
+                std::size_t skip = std::numeric_limits<std::size_t>::max()) {
   RowSums s;
   for (std::size_t i = 0; i < rows.size(); ++i) {
+    if (i == skip) continue;
     const SendingTimeRow& r = rows[i];
-    if (i + 1 < rows.size() && rows[i + 1].mic == r.mic) {
+    if (i + 1 < rows.size() && i + 1 != skip && rows[i + 1].mic == r.mic) {
       const SendingTimeRow& q = rows[i + 1];
       const double v1 = 1.0 / r.w, v2 = 1.0 / q.w, c = 4.0 * var_s2 * r.u_l_s * q.u_l_s;
       const double det = v1 * v2 - c * c;
@@ -545,9 +545,7 @@ std::optional<std::pair<double, double>> RefineSendingTime(const PairTable& pair
         // emission's other rows (a late high-leverage row would raise its own bound); the
         // delay's sigma: its two stamps' and the bound's (that K's variance at this t_0). A
         // K that is not positive is no sender's: the emission test handles that emission.
-        std::vector<SendingTimeRow> rest = rows[e];
-        rest.erase(rest.begin() + static_cast<std::ptrdiff_t>(i));
-        const RowSums rest_sums = SumRows(rest, var_s2);
+        const RowSums rest_sums = SumRows(rows[e], var_s2, i);
         const double sbb_rest = rest_sums.sbb;
         if (heights && sbb_rest > 0.0) {
           const double k_rest = (rest_sums.sby - t0 * rest_sums.sab) / sbb_rest;

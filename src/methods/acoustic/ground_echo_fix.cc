@@ -123,6 +123,12 @@ GroundEchoFixer::GroundEchoFixer(std::vector<Vec3> mics_m, double floor_z_m, dou
   if (options_.floor_ceiling_echoes && ceiling_z_m && *ceiling_z_m > highest_m) {
     vote_.ceiling_height_m = *ceiling_z_m - floor_z_m_;
   }
+  for (const auto& m : mics_m_) {
+    floor_images_m_.emplace_back(m.x(), m.y(), 2.0 * floor_z_m_ - m.z());
+    if (vote_.ceiling_height_m > 0.0) {
+      floor_ceiling_images_m_.emplace_back(m.x(), m.y(), 2.0 * floor_z_m_ - (2.0 * *ceiling_z_m - m.z()));
+    }
+  }
 }
 
 std::optional<estimation::SolverFix> GroundEchoFixer::Solve(const std::vector<Vec3>& receivers_m,
@@ -169,16 +175,15 @@ std::optional<GroundEchoFixer::SelectionFit> GroundEchoFixer::FitSelection(
     row_mic.push_back(static_cast<int>(m));
     row_optional.push_back(false);
     if (options_.echoes && c.ground_index >= 0) {
-      receivers_m.emplace_back(mics_m_[m].x(), mics_m_[m].y(), 2.0 * floor_z_m_ - mics_m_[m].z());
+      receivers_m.push_back(floor_images_m_[m]);
       values_m.push_back(c_mps_ * (stamps_s[m][static_cast<std::size_t>(c.ground_index)] - t0_s.value_or(0.0)));
       row_mic.push_back(static_cast<int>(m));
       row_optional.push_back(false);
     }
     // The floor-ceiling echo (only chosen with the ceiling known): the microphone mirrored in the
     // ceiling (its last reflection), then in the floor.
-    if (options_.echoes && c.floor_ceiling_index >= 0 && ceiling_z_m_) {
-      receivers_m.emplace_back(mics_m_[m].x(), mics_m_[m].y(),
-                               2.0 * floor_z_m_ - (2.0 * *ceiling_z_m_ - mics_m_[m].z()));
+    if (options_.echoes && c.floor_ceiling_index >= 0 && !floor_ceiling_images_m_.empty()) {
+      receivers_m.push_back(floor_ceiling_images_m_[m]);
       values_m.push_back(c_mps_ * (stamps_s[m][static_cast<std::size_t>(c.floor_ceiling_index)] - t0_s.value_or(0.0)));
       row_mic.push_back(static_cast<int>(m));
       row_optional.push_back(true);
@@ -400,15 +405,12 @@ GroundEchoFixer::StampSupport GroundEchoFixer::SupportAt(const Vec3& position_m,
     if (index >= 0) out.rows += 1, out.sum_sq_m2 += nearest_m * nearest_m;
     return index;
   };
-  const bool floor_ceiling = vote_.ceiling_height_m > 0.0 && ceiling_z_m_;
   for (std::size_t m = 0; m < mics_m_.size(); ++m) {
-    const Vec3 mirrored_m(mics_m_[m].x(), mics_m_[m].y(), 2.0 * floor_z_m_ - mics_m_[m].z());
     const int los = explained(stamps_s[m], (position_m - mics_m_[m]).norm(), -1);
     if (los < 0) continue;
-    const int floor = explained(stamps_s[m], (position_m - mirrored_m).norm(), los);
-    if (floor_ceiling) {
-      const Vec3 twice_mirrored_m(mics_m_[m].x(), mics_m_[m].y(), 2.0 * floor_z_m_ - (2.0 * *ceiling_z_m_ - mics_m_[m].z()));
-      explained(stamps_s[m], (position_m - twice_mirrored_m).norm(), los, floor);
+    const int floor = explained(stamps_s[m], (position_m - floor_images_m_[m]).norm(), los);
+    if (!floor_ceiling_images_m_.empty()) {
+      explained(stamps_s[m], (position_m - floor_ceiling_images_m_[m]).norm(), los, floor);
     }
   }
   return out;

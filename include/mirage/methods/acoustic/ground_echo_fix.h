@@ -188,6 +188,10 @@ class GroundEchoFixer {
   double window_s_;
   double mic_plane_z_m_ = 0.0;          // the microphones' mean height (m)
   std::optional<double> ceiling_z_m_;   // the room's ceiling (m), if known
+  std::vector<Vec3> floor_images_m_;    // each microphone mirrored in the floor
+  /// Each microphone mirrored in the ceiling, then in the floor (the floor-ceiling echo's
+  /// receiver); empty unless the vote models that echo (vote_.ceiling_height_m > 0).
+  std::vector<Vec3> floor_ceiling_images_m_;
   GroundEchoOptions options_;
   estimation::SendingTimeVoteOptions vote_;
   struct Track {
