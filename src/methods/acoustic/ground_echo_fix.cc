@@ -12,15 +12,14 @@
 namespace mirage::methods::acoustic {
 namespace {
 
-// How fixes of one emission rank, in the consensus over smallest sets and between the vote's
-// clusters: more microphones within 3 sigma, then more of the emission's stamps explained (a
-// microphone's LOS and floor echo among all its stamps, SupportAt), then the smaller sum of
-// squared misses. Three nearly collinear microphones and a false alarm fit a point on a circle
-// around their line as closely as four true stamps fit the sender, and a cluster of LOS /
-// wall-echo pairs fits a higher sender with a solved offset as closely as the LOS / floor-echo
-// pairs fit the sender; the other stamps of the emission do not follow the wrong point. The last
-// key is the caller's: the supported stamps' squared misses in the consensus, the fit's own
-// squared residuals between clusters.
+// How fixes of one emission's selection rank in the consensus over smallest sets (and, after the
+// MSAC score of all the stamps, between the vote's clusters): more microphones within 3 sigma,
+// then more of the emission's stamps explained (a microphone's modelled arrivals among all its
+// stamps, SupportAt), then the smaller sum of squared misses. Three nearly collinear microphones
+// and a false alarm fit a point on a circle around their line as closely as four true stamps fit
+// the sender; the other stamps of the emission do not follow the wrong point. The last key is
+// the caller's: the supported stamps' squared misses in the consensus, the fit's own squared
+// residuals between clusters.
 struct FixRank {
   std::size_t mics = 0;
   int support_rows = 0;
@@ -125,6 +124,7 @@ GroundEchoFixer::GroundEchoFixer(std::vector<Vec3> mics_m, double floor_z_m, dou
   }
   for (const auto& m : mics_m_) {
     floor_images_m_.emplace_back(m.x(), m.y(), 2.0 * floor_z_m_ - m.z());
+    if (ceiling_z_m && *ceiling_z_m > highest_m) ceiling_images_m_.emplace_back(m.x(), m.y(), 2.0 * *ceiling_z_m - m.z());
     if (vote_.ceiling_height_m > 0.0) {
       floor_ceiling_images_m_.emplace_back(m.x(), m.y(), 2.0 * floor_z_m_ - (2.0 * *ceiling_z_m - m.z()));
     }
@@ -369,7 +369,7 @@ std::optional<GroundEchoFixer::SelectionFit> GroundEchoFixer::FitSelection(
   if (static_cast<std::size_t>(std::count(used.begin(), used.end(), true)) <= smallest_set) {
     return std::nullopt;
   }
-  SelectionFit out{*fix, 0, 0.0, 0, 0, 0};
+  SelectionFit out{*fix};
   Vec3 sum_u = Vec3::Zero();  // the rows' unit vectors receiver -> sender
   for (std::size_t r = 0; r < receivers_m.size(); ++r) {
     const auto m = static_cast<std::size_t>(row_mic[r]);
@@ -382,7 +382,9 @@ std::optional<GroundEchoFixer::SelectionFit> GroundEchoFixer::FitSelection(
     sum_u += leg_m.normalized();
   }
   out.mics = static_cast<int>(std::count(used.begin(), used.end(), true));
-  out.support_rows = SupportAt(fix->position_m, origin_m(*fix), stamps_s).rows;
+  const StampSupport support = SupportAt(fix->position_m, origin_m(*fix), stamps_s);
+  out.support_rows = support.rows;
+  out.support_score = support.score;
   // (H^T R^-1 H)^-1 H^T R^-1 1 with equal sigmas: the covariance times sum u_r / sigma^2.
   out.common_shift_gain = fix->covariance_m2.topLeftCorner<3, 3>() * sum_u / (sigma_m_ * sigma_m_);
   return out;
@@ -394,23 +396,30 @@ GroundEchoFixer::StampSupport GroundEchoFixer::SupportAt(const Vec3& position_m,
   StampSupport out;
   // The index of the stamp nearest to range_m within the gate, other than `taken` and
   // `also_taken` (-1: none); its miss is added.
-  const auto explained = [&](const std::vector<double>& list_s, double range_m, int taken, int also_taken = -1) {
+  const auto explained = [&](const std::vector<double>& list_s, double range_m, int taken, int also_taken = -1,
+                             int third_taken = -1) {
     double nearest_m = gate_m;
     int index = -1;
     for (std::size_t i = 0; i < list_s.size(); ++i) {
       const double miss_m = std::abs(c_mps_ * list_s[i] - origin_m - range_m);
-      const bool free = static_cast<int>(i) != taken && static_cast<int>(i) != also_taken;
+      const auto n = static_cast<int>(i);
+      const bool free = n != taken && n != also_taken && n != third_taken;
       if (free && miss_m <= nearest_m) nearest_m = miss_m, index = static_cast<int>(i);
     }
-    if (index >= 0) out.rows += 1, out.sum_sq_m2 += nearest_m * nearest_m;
+    if (index >= 0) {
+      out.rows += 1;
+      out.sum_sq_m2 += nearest_m * nearest_m;
+      out.score += 9.0 - nearest_m * nearest_m / (sigma_m_ * sigma_m_);
+    }
     return index;
   };
   for (std::size_t m = 0; m < mics_m_.size(); ++m) {
     const int los = explained(stamps_s[m], (position_m - mics_m_[m]).norm(), -1);
-    if (los < 0) continue;
     const int floor = explained(stamps_s[m], (position_m - floor_images_m_[m]).norm(), los);
+    int ceiling = -1;
+    if (!ceiling_images_m_.empty()) ceiling = explained(stamps_s[m], (position_m - ceiling_images_m_[m]).norm(), los, floor);
     if (!floor_ceiling_images_m_.empty()) {
-      explained(stamps_s[m], (position_m - floor_ceiling_images_m_[m]).norm(), los, floor);
+      explained(stamps_s[m], (position_m - floor_ceiling_images_m_[m]).norm(), los, floor, ceiling);
     }
   }
   return out;
@@ -501,47 +510,51 @@ GroundEchoFix GroundEchoFixer::Process(const core::Epoch& epoch) {
     t0_s = *known_emission_s - epoch.t_s;
   }
 
-  // 3-4. The fix of the vote's K cluster, and of its other clusters: a wall echo and its floor
-  //      echo share K like the LOS and the floor echo, and the vote's tie-break between clusters
-  //      of as many microphones (the spread of K) is weak; the geometry decides (Fischler &
-  //      Bolles's verification step): the fix keeping the most microphones within 3 sigma wins,
-  //      then the one explaining more of the emission's stamps, then the smaller sum of squared
-  //      misses. With a known t_0 every row is an absolute
-  //      range, independent of the selection, so any cluster is verified on its own and all are
-  //      tried. With t_0 from the vote (derived from the chosen cluster) or solved with the fix
-  //      (pseudo-ranges), a smaller cluster fits its own geometry too easily to overrule the
-  //      vote's count: only the clusters as large as the chosen one are tried.
-  const bool absolute_ranges = options_.sending_time == "known";
+  // 3-4. The fix of the vote's K cluster, and of each of its other clusters: a wall echo and its
+  //      floor echo share K like the LOS and the floor echo (and at a sender on a symmetry line
+  //      of the room, LOS / wall-echo pairs of several microphones share one K), and the vote's
+  //      tie-break between clusters of as many microphones (the spread of K) is weak; the
+  //      geometry decides (Fischler & Bolles's verification step) over all of the emission's
+  //      stamps, not only the selection's: the fix whose modelled arrivals (LOS, floor, ceiling
+  //      and floor-ceiling echo at every microphone, SupportAt) explain the stamps best by the
+  //      MSAC score (Torr & Zisserman: each explained arrival 9 - (miss / sigma)^2, within
+  //      3 sigma) wins, then the one keeping more microphones of its selection, then the
+  //      smaller sum of squared misses. Every cluster is fitted: a smaller cluster's fit still
+  //      has to explain the other microphones' stamps to win (until the MSAC score, a smaller
+  //      cluster fitted its own geometry too easily to overrule the vote's count).
   const auto& stamps = voted.back().mic_stamps_s;
-  // With the vote's t_0 as a prior (step 5): whether a fix's solved offset agrees with it
-  // within 3 sigma (the prior's gate below). A selection that reads the floor-ceiling echoes as
-  // floor echoes fits a sender higher by (C - h) (C + z) / h with a later offset: nearly
-  // consistent as pseudo-ranges, not with the vote's t_0.
+  // With the vote's t_0 as a prior (step 5) it is one more arrival of the MSAC score: the
+  // solved offset's miss over the prior's and the fix's variance, 9 - z^2 within 3 sigma (the
+  // prior's gate below). A selection that reads the floor-ceiling echoes as floor echoes fits a
+  // sender higher by (C - h) (C + z) / h with a later offset: nearly consistent as
+  // pseudo-ranges, not with the vote's t_0. (It replaced ranking every fix that contradicts the
+  // prior last: a vote t_0 3 sigma off its track then kept the true fix out.)
   const bool prior_check = vote_prior && vote->t0_sigma_s > 0.0;
-  const auto agrees = [&](const SelectionFit& f) {
-    if (!prior_check) return true;
+  const auto prior_score = [&](const SelectionFit& f) {
+    if (!prior_check) return 0.0;
     const double sigma_m = c_mps_ * vote->t0_sigma_s;
-    return estimation::InsideChi2Gate(c_mps_ * vote->t0_s - f.fix.offset_m,
-                                      f.fix.covariance_m2(3, 3) + sigma_m * sigma_m, 9.0);
+    const double miss_m = c_mps_ * vote->t0_s - f.fix.offset_m;
+    return std::max(0.0, 9.0 - miss_m * miss_m / (f.fix.covariance_m2(3, 3) + sigma_m * sigma_m));
   };
-  // Ranked by that agreement, then as in the consensus (FixRank), by the fit's own sum of
-  // squared residuals last.
+  // Ranked by the MSAC score of the emission's stamps (with the prior's term), then as in the
+  // consensus (FixRank), by the fit's own sum of squared residuals last.
   const auto better = [&](const SelectionFit& a, const SelectionFit& b) {
-    const bool agree_a = agrees(a), agree_b = agrees(b);
-    if (agree_a != agree_b) return agree_a;
+    const double score_a = a.support_score + prior_score(a), score_b = b.support_score + prior_score(b);
+    if (score_a != score_b) return score_a > score_b;
     const auto rank = [](const SelectionFit& f) {
       return FixRank{static_cast<std::size_t>(f.mics), f.support_rows, f.sum_sq_m2};
     };
     return rank(a).Beats(rank(b));
   };
   std::optional<SelectionFit> best = FitSelection(chosen, stamps, t0_s);
+  // The thesis's plug-in t_0 (Eq. 8.80) is the exception: its fits take the vote's t_0 as exact,
+  // whose error (~3 stamp sigmas) shifts every fit's misses alike, and the comparison over all
+  // stamps then prefers wrong smaller clusters (the plug-in variant's height RMSE 15 -> 23 mm,
+  // 0.66 m at worst): with it only the clusters of as many microphones as the vote's are fitted.
+  const bool plug_in = options_.sending_time == "estimated" && !vote_prior;
   for (const auto& alternative : vote->alternatives) {
     const auto mics = std::count_if(alternative.begin(), alternative.end(), [](const auto& c) { return c.los_index >= 0; });
-    // Only as many microphones as the vote's and the best fix's (the alternatives come most
-    // pairs first, which with floor-ceiling pairs is not most microphones first); every one
-    // while the best fix contradicts the prior.
-    const bool contradicted = best && !agrees(*best);
-    if (!contradicted && ((!absolute_ranges && mics < heard) || (best && mics < best->mics))) continue;
+    if (plug_in && mics < heard) continue;
     auto fit = FitSelection(alternative, stamps, t0_s);
     if (fit && (!best || better(*fit, *best))) {
       best = std::move(fit);

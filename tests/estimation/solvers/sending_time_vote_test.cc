@@ -825,6 +825,44 @@ TEST(VoteSendingTimeAt, ReturnsTheOtherKClustersAsAlternativesLargestFirst) {
   }
 }
 
+// A pair's K is noisier the farther its microphone (dK = 2 (T_r - t_0) dT_r - 2 (T_L - t_0) dT_L):
+// the four microphones share K when each lies within its own tolerance of a common value. Here
+// the two far ones are 0.9 of their tolerance off on either side: each is farther from the
+// other, and from the near ones' K, than the near ones' tolerance, so no single pair's interval
+// holds all four (the cluster around one centre pair with its own tolerance, the rule before,
+// found three microphones and left the fourth to its wrong reading).
+TEST(VoteSendingTimeAt, EachPairIsTestedWithItsOwnTolerance) {
+  const double t0_s = 0.02;
+  const Vec3 sender(3.0, 2.0, 1.3);
+  const std::vector<Vec3> mics{Vec3(2.0, 1.0, 4.85), Vec3(4.0, 3.5, 4.85), Vec3(14.0, 9.0, 4.85),
+                               Vec3(13.0, -6.0, 4.85)};
+  SendingTimeVoteOptions options;
+  options.mic_height_spread_m = 0.0;  // tolerances from the stamps' noise alone
+  EmissionStamps e;
+  std::vector<double> tolerance_s2;
+  for (const Vec3& mic : mics) {
+    const LosGroundStamps s = Stamps(sender, mic, t0_s);
+    e.mic_stamps_s.push_back({s.los_s, s.ground_s});
+    tolerance_s2.push_back(options.pile_sigmas * 2.0 * options.stamp_sigma_s * std::hypot(s.los_s - t0_s, s.ground_s - t0_s));
+  }
+  ASSERT_GT(0.9 * tolerance_s2[2], tolerance_s2[0]);  // a far pair is off by more than a near tolerance
+  ASSERT_GT(0.9 * tolerance_s2[3], tolerance_s2[1]);
+  ASSERT_GT(0.9 * (tolerance_s2[2] + tolerance_s2[3]), std::max(tolerance_s2[2], tolerance_s2[3]));
+  // K = (T_r - t_0)^2 - (T_L - t_0)^2 moved by +-0.9 of the far pairs' tolerances through T_r.
+  for (const auto& [m, sign] : {std::pair<std::size_t, double>{2, 1.0}, {3, -1.0}}) {
+    double& ground_s = e.mic_stamps_s[m][1];
+    ground_s += sign * 0.9 * tolerance_s2[m] / (2.0 * (ground_s - t0_s));
+  }
+  const std::vector<EmissionStamps> emissions{e};
+  const auto vote = VoteSendingTimeAt(emissions, t0_s, options);
+  ASSERT_TRUE(vote.has_value());
+  for (std::size_t m = 0; m < mics.size(); ++m) {
+    SCOPED_TRACE(m);
+    EXPECT_EQ(vote->chosen.back()[m].los_index, 0);
+    EXPECT_EQ(vote->chosen.back()[m].ground_index, 1);
+  }
+}
+
 TEST(VoteSendingTime, RefusesMoreCombinationsThanAllowedAndInvalidOptions) {
   core::Rng rng(14);
   SimOptions sim;

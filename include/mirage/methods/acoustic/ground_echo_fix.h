@@ -44,11 +44,12 @@
 //     within 3 sigma of its fix counted, ties to the fix explaining more of all the emission's
 //     stamps; Fischler & Bolles) is refitted, then the worst microphone beyond 3 sigma left out
 //     while rows remain; a fix of no more microphones than the smallest set fits them whatever
-//     their stamps and is no fix. The vote's other K clusters are fitted too (all with a known
-//     t_0, whose rows are absolute ranges; only those as large as the chosen one otherwise,
-//     unless the best fix so far contradicts the vote's t_0 as a prior, below) and the fix
-//     keeping the most microphones wins (ties: the one explaining more of the emission's
-//     stamps). With the vote's t_0 as a prior, a fix whose solved offset lies beyond 3 sigma of
+//     their stamps and is no fix. The vote's other K clusters are fitted too, and the fix that
+//     explains the emission's stamps best wins: every modelled arrival at every microphone
+//     (LOS, floor echo, and with the ceiling known the ceiling and floor-ceiling echoes), its
+//     nearest stamp within 3 sigma scored 9 - (miss / sigma)^2 (MSAC, Torr & Zisserman 2000);
+//     ties to the fix keeping more microphones of its selection. With the vote's t_0 as a
+//     prior, a fix whose solved offset lies beyond 3 sigma of
 //     it (the prior's own gate in step 5) ranks after every fix that agrees: pseudo-ranges
 //     alone fit the floor-ceiling echoes read as floor echoes (a sender higher by
 //     (C - h) (C + z) / h, 0.4-0.5 m in the hall, and a later offset) nearly as well as the true
@@ -189,6 +190,9 @@ class GroundEchoFixer {
   double mic_plane_z_m_ = 0.0;          // the microphones' mean height (m)
   std::optional<double> ceiling_z_m_;   // the room's ceiling (m), if known
   std::vector<Vec3> floor_images_m_;    // each microphone mirrored in the floor
+  /// Each microphone mirrored in the ceiling (the ceiling echo's receiver); empty without a
+  /// known ceiling above the microphones. Only the stamp support counts it (SupportAt).
+  std::vector<Vec3> ceiling_images_m_;
   /// Each microphone mirrored in the ceiling, then in the floor (the floor-ceiling echo's
   /// receiver); empty unless the vote models that echo (vote_.ceiling_height_m > 0).
   std::vector<Vec3> floor_ceiling_images_m_;
@@ -209,9 +213,11 @@ class GroundEchoFixer {
     estimation::SolverFix fix;
     int mics = 0;
     double sum_sq_m2 = 0.0;
-    /// The stamps of the whole emission the fix explains (SupportAt): the tie-break between
-    /// fixes of as many microphones.
+    /// The arrivals of the whole emission the fix explains (SupportAt): the consensus's
+    /// tie-break between fixes of as many microphones.
     int support_rows = 0;
+    /// Their MSAC score (StampSupport::score): how the fixes of the vote's clusters rank.
+    double support_score = 0.0;
     int los_rows = 0;
     int echo_rows = 0;
     /// The fix's change per metre of a range offset common to every row (a sending time off by
@@ -227,12 +233,15 @@ class GroundEchoFixer {
                                                          const std::optional<double>& t0_s) const;
 
   /// The stamps a hypothesis explains, over all of an emission's stamps (not only a selection's):
-  /// per microphone a stamp within 3 sigma of its LOS arrival and, when there is one, a stamp
-  /// within 3 sigma of its floor-echo arrival (and of its floor-ceiling arrival when the vote
-  /// models it).
+  /// per microphone and modelled arrival (LOS, floor echo, and with the ceiling known the ceiling
+  /// echo and, when the vote models it, the floor-ceiling echo) its nearest stamp within 3 sigma,
+  /// each stamp explaining one arrival. A blocked LOS does not keep the echoes from counting.
   struct StampSupport {
-    int rows = 0;             // LOS and echo stamps explained
+    int rows = 0;             // arrivals explained
     double sum_sq_m2 = 0.0;   // of the nearest stamps' misses
+    /// Sum of 9 - (miss / sigma)^2 over the explained arrivals: the MSAC score (a stamp at the
+    /// gate adds nothing, a chance stamp little, a true one ~8).
+    double score = 0.0;
   };
   /// @param origin_m  c t_0 (t_0 given) or the solved offset: a stamp t lies at range c t - origin_m
   [[nodiscard]] StampSupport SupportAt(const Vec3& position_m, double origin_m,
