@@ -394,8 +394,8 @@ GroundEchoFixer::StampSupport GroundEchoFixer::SupportAt(const Vec3& position_m,
                                                         const std::vector<std::vector<double>>& stamps_s) const {
   const double gate_m = 3.0 * sigma_m_;
   StampSupport out;
-  // The index of the stamp nearest to range_m within the gate, other than `taken` and
-  // `also_taken` (-1: none); its miss is added.
+  // The index of the stamp nearest to range_m within the gate, other than the ones already
+  // taken by the microphone's other arrivals (-1: none); its miss and score are added.
   const auto explained = [&](const std::vector<double>& list_s, double range_m, int taken, int also_taken = -1,
                              int third_taken = -1) {
     double nearest_m = gate_m;
@@ -520,8 +520,9 @@ GroundEchoFix GroundEchoFixer::Process(const core::Epoch& epoch) {
   //      MSAC score (Torr & Zisserman: each explained arrival 9 - (miss / sigma)^2, within
   //      3 sigma) wins, then the one keeping more microphones of its selection, then the
   //      smaller sum of squared misses. Every cluster is fitted: a smaller cluster's fit still
-  //      has to explain the other microphones' stamps to win (until the MSAC score, a smaller
-  //      cluster fitted its own geometry too easily to overrule the vote's count).
+  //      has to explain the other microphones' stamps to win (ranked by its own microphones, a
+  //      smaller cluster fitted its own geometry too easily to overrule the vote's count, and
+  //      only the clusters as large as the vote's were fitted).
   const auto& stamps = voted.back().mic_stamps_s;
   // With the vote's t_0 as a prior (step 5) it is one more arrival of the MSAC score: the
   // solved offset's miss over the prior's and the fix's variance, 9 - z^2 within 3 sigma (the

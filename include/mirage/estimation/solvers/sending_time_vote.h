@@ -26,7 +26,7 @@
 //    Every candidate t_0 (one per stamp_sigma_s) is a hypothesis; per emission the microphones
 //    whose pairs share K, each within pile_sigmas of its own K's sigma (plus the height-spread
 //    slack 4 max_sender_height_m mic_height_spread_m / c^2) of a common value (intervals sharing
-//    a point, re-centred on their mean), are its inliers; the hypothesis with the most inliers
+//    a point), are its inliers; the hypothesis with the most inliers
 //    beyond two per emission wins (ties: the smaller sum of squared K residuals over their
 //    tolerances, as in MSAC). t_0 is then the weighted least-squares solution of
 //    2 d_m t_0 + K_e = d_m (T_r,m + T_L,m) over the inliers (linear in t_0 and one K_e per

@@ -49,11 +49,13 @@
 //     (LOS, floor echo, and with the ceiling known the ceiling and floor-ceiling echoes), its
 //     nearest stamp within 3 sigma scored 9 - (miss / sigma)^2 (MSAC, Torr & Zisserman 2000);
 //     ties to the fix keeping more microphones of its selection. With the vote's t_0 as a
-//     prior, a fix whose solved offset lies beyond 3 sigma of
-//     it (the prior's own gate in step 5) ranks after every fix that agrees: pseudo-ranges
+//     prior it is one more arrival of that score (the solved offset's miss over the prior's
+//     and the fix's variance, within the prior's own 3 sigma gate of step 5): pseudo-ranges
 //     alone fit the floor-ceiling echoes read as floor echoes (a sender higher by
 //     (C - h) (C + z) / h, 0.4-0.5 m in the hall, and a later offset) nearly as well as the true
-//     reading.
+//     reading. With the thesis's plug-in t_0 only the clusters of as many microphones as the
+//     vote's are fitted (its fits take the vote's t_0 as exact, and the score over all stamps
+//     then prefers wrong smaller clusters).
 //     With LOS rows only, coplanar microphones fit the sender's mirror image in their
 //     plane as well: a fix above the ceiling restarts from that mirror; a fix more than 3 of its
 //     vertical sigmas below the floor is no fix.
