@@ -8,6 +8,7 @@
 // stamps of examples/acoustic_height.yaml.
 #include <algorithm>
 #include <array>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -183,6 +184,10 @@ void BM_GroundEchoFix(benchmark::State& state) {
     }
     return out;
   }();
+  if (epochs.size() <= 20) {
+    state.SkipWithError("the example gave fewer than 21 emissions");
+    return;
+  }
   std::vector<Vec3> mics_m;
   for (const auto& anchor : experiment.anchors) mics_m.push_back(anchor.position_m);
   const double c_mps = experiment.medium.speed_mps;

@@ -90,6 +90,7 @@ TEST(AcousticHeight, FloorEchoesPinTheHeight) {
   EXPECT_LT(second_estimated.overall.height_error->p95, 0.03);
   EXPECT_LT(second_estimated.overall.height_error->rmse, 0.06);
   EXPECT_LT(second_estimated.overall.height_error->p95, second_unmodelled.overall.height_error->p95);
+  EXPECT_LT(second_estimated.overall.height_error->rmse, 0.7 * second_unmodelled.overall.height_error->rmse);
   EXPECT_LE(second_known.overall.height_error->rmse, 1.3 * sigma_range_m * second_known.overall.vdop->rms);
 }
 

@@ -302,16 +302,19 @@ double MaxTolerance(const std::vector<KEntry>& entries) {
 /// tested with its own tolerance: a far microphone's K is noisier than a near one's). Per slot
 /// (microphone and kind) the pair nearest the point in units of its tolerance (-1 if none) in
 /// *members, their count, and in *cost their squared misses from the members' weighted mean K
-/// in units of their tolerances (MSAC-like: each is at most about 4).
+/// in units of their tolerances (MSAC-like: typically each below 4).
 ClusterSize ClusterAt(const std::vector<KEntry>& entries, double point_s2, double max_tol_s2,
                       std::vector<int>* members, std::vector<double>* distance, double* cost) {
   std::fill(members->begin(), members->end(), -1);
   std::fill(distance->begin(), distance->end(), std::numeric_limits<double>::infinity());
   std::vector<const KEntry*> member_entry(members->size(), nullptr);
   ClusterSize size;
-  const auto lo = std::lower_bound(entries.begin(), entries.end(), point_s2 - max_tol_s2,
+  // The scan reaches a little beyond the largest tolerance: at an interval's lower end k - tol
+  // the rounded (k - tol) + tol can fall below k. Membership is decided by the test below.
+  const double reach_s2 = max_tol_s2 + 1e-9 * (std::abs(point_s2) + max_tol_s2);
+  const auto lo = std::lower_bound(entries.begin(), entries.end(), point_s2 - reach_s2,
                                    [](const KEntry& a, double v) { return a.k_s2 < v; });
-  for (auto it = lo; it != entries.end() && it->k_s2 <= point_s2 + max_tol_s2; ++it) {
+  for (auto it = lo; it != entries.end() && it->k_s2 <= point_s2 + reach_s2; ++it) {
     if (!(it->k_s2 - it->tol_s2 <= point_s2 && point_s2 <= it->k_s2 + it->tol_s2)) continue;
     const std::size_t slot = Slot(static_cast<std::size_t>(it->mic), it->kind);
     const std::size_t other = Slot(static_cast<std::size_t>(it->mic), kKinds - 1 - it->kind);

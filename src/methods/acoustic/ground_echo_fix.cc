@@ -518,8 +518,8 @@ GroundEchoFix GroundEchoFixer::Process(const core::Epoch& epoch) {
   //      stamps, not only the selection's: the fix whose modelled arrivals (LOS, floor, ceiling
   //      and floor-ceiling echo at every microphone, SupportAt) explain the stamps best by the
   //      MSAC score (Torr & Zisserman: each explained arrival 9 - (miss / sigma)^2, within
-  //      3 sigma) wins, then the one keeping more microphones of its selection, then the
-  //      smaller sum of squared misses. Every cluster is fitted: a smaller cluster's fit still
+  //      3 sigma) wins, on an exact tie the one keeping more microphones of its selection, then
+  //      the smaller sum of squared misses. Every cluster is fitted: a smaller cluster's fit still
   //      has to explain the other microphones' stamps to win (ranked by its own microphones, a
   //      smaller cluster fitted its own geometry too easily to overrule the vote's count, and
   //      only the clusters as large as the vote's were fitted).

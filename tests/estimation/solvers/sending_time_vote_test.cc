@@ -826,7 +826,7 @@ TEST(VoteSendingTimeAt, ReturnsTheOtherKClustersAsAlternativesLargestFirst) {
 }
 
 // A pair's K is noisier the farther its microphone (dK = 2 (T_r - t_0) dT_r - 2 (T_L - t_0) dT_L):
-// the four microphones share K when each lies within its own tolerance of a common value. Here
+// the microphones share K when each lies within its own tolerance of a common value. Here
 // the two far ones are 0.9 of their tolerance off on either side: each is farther from the
 // other, and from the near ones' K, than the near ones' tolerance, so no single pair's interval
 // holds all four (the cluster around one centre pair with its own tolerance, the rule before,
@@ -860,6 +860,23 @@ TEST(VoteSendingTimeAt, EachPairIsTestedWithItsOwnTolerance) {
     SCOPED_TRACE(m);
     EXPECT_EQ(vote->chosen.back()[m].los_index, 0);
     EXPECT_EQ(vote->chosen.back()[m].ground_index, 1);
+  }
+  // Three microphones whose common K lies in none of their own K: the near one 0.9 of its
+  // tolerance below, the far ones 0.9 of theirs above. Only a point at an interval's lower end
+  // (the largest among them) holds all three.
+  EmissionStamps three;
+  for (const std::size_t m : {std::size_t{0}, std::size_t{2}, std::size_t{3}}) {
+    const LosGroundStamps s = Stamps(sender, mics[m], t0_s);
+    const double sign = m == 0 ? -1.0 : 1.0;
+    three.mic_stamps_s.push_back({s.los_s, s.ground_s + sign * 0.9 * tolerance_s2[m] / (2.0 * (s.ground_s - t0_s))});
+  }
+  const std::vector<EmissionStamps> three_emissions{three};
+  const auto three_vote = VoteSendingTimeAt(three_emissions, t0_s, options);
+  ASSERT_TRUE(three_vote.has_value());
+  for (std::size_t m = 0; m < 3; ++m) {
+    SCOPED_TRACE(m);
+    EXPECT_EQ(three_vote->chosen.back()[m].los_index, 0);
+    EXPECT_EQ(three_vote->chosen.back()[m].ground_index, 1);
   }
 }
 

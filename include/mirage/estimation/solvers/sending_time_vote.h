@@ -38,9 +38,11 @@
 //    scaled by the Birge ratio of the emissions' scatter when above one (a wrong but
 //    self-consistent cluster in one emission otherwise pulls the window's t_0; measured in
 //    docs/results/acoustic.md).
-//    Hypothesis scoring costs O(H E P_e log P_e) for H <= candidates hypotheses, E emissions,
-//    P_e pairs per emission. The refinement re-clusters until t_0 moves by less than a tenth of
-//    a stamp sigma (K hardly depends on t_0, so the search's hypothesis may be ~1 ms off).
+//    Hypothesis scoring costs O(H E P_e (log P_e + W)) for H <= candidates hypotheses, E
+//    emissions, P_e pairs per emission, W the pairs within the largest tolerance of a point
+//    (two points per pair: its K and its interval's lower end). The refinement re-clusters until
+//    t_0 moves by less than a tenth of a stamp sigma (K hardly depends on t_0, so the search's
+//    hypothesis may be ~1 ms off).
 //  - Options beyond the thesis, for a known geometry (methods/acoustic/ground_echo_fix.h sets
 //    them): the microphones' heights (exact K per microphone), a lower bound on the echo excess
 //    (excludes the ceiling echo), and the LOS as each microphone's first arrival.
@@ -197,7 +199,8 @@ struct SendingTimeVote {
   /// inlier pair (kConsensus); -1 where none.
   std::vector<std::vector<MicStampChoice>> chosen;
   /// kConsensus: the last emission's other K clusters of at least three microphones at t0_s,
-  /// ranked as the winner (most pairs first), among equals the tightest. Each is as consistent
+  /// ranked as the winner (most pairs first), among equals the tightest; a cluster contained in
+  /// a larger one is not listed. Each is as consistent
   /// in t_0 and K as `chosen` (a wall echo and its floor echo share K like the LOS and the floor
   /// echo, see los_is_first_arrival): the stamps alone cannot rank them, a position fit can.
   std::vector<std::vector<MicStampChoice>> alternatives;

@@ -47,8 +47,9 @@
 //     their stamps and is no fix. The vote's other K clusters are fitted too, and the fix that
 //     explains the emission's stamps best wins: every modelled arrival at every microphone
 //     (LOS, floor echo, and with the ceiling known the ceiling and floor-ceiling echoes), its
-//     nearest stamp within 3 sigma scored 9 - (miss / sigma)^2 (MSAC, Torr & Zisserman 2000);
-//     ties to the fix keeping more microphones of its selection. With the vote's t_0 as a
+//     nearest stamp within 3 sigma scored 9 - (miss / sigma)^2 (MSAC, Torr & Zisserman 2000;
+//     exact ties, as of one selection reached twice, to the fix keeping more microphones). The
+//     consensus's tie-break above counts the same arrivals (SupportAt). With the vote's t_0 as a
 //     prior it is one more arrival of that score (the solved offset's miss over the prior's
 //     and the fix's variance, within the prior's own 3 sigma gate of step 5): pseudo-ranges
 //     alone fit the floor-ceiling echoes read as floor echoes (a sender higher by
@@ -215,8 +216,7 @@ class GroundEchoFixer {
     estimation::SolverFix fix;
     int mics = 0;
     double sum_sq_m2 = 0.0;
-    /// The arrivals of the whole emission the fix explains (SupportAt): the consensus's
-    /// tie-break between fixes of as many microphones.
+    /// The arrivals of the whole emission the fix explains (SupportAt).
     int support_rows = 0;
     /// Their MSAC score (StampSupport::score): how the fixes of the vote's clusters rank.
     double support_score = 0.0;
