@@ -366,34 +366,43 @@ ClusterSize ClusterAt(const std::vector<KEntry>& entries, double point_s2, doubl
   return size;
 }
 
-/// The largest set of pairs of one emission sharing K under hypothesis t_s: per slot the pair
-/// index (or -1). The points tried: every pair's K (exact stamps share it exactly) and the lower
-/// end of its interval (every maximal set of intervals sharing a point contains the largest lower
-/// end among its members, so no such set is missed). A centre pair's own tolerance alone (the
-/// rule before) left out true pairs of far microphones, whose K is noisier, around a near one,
-/// and a wrong cluster of as many microphones won. Measured and not kept: re-centring each
-/// cluster once on its members' mean (the office hold-out's emissions without a fix 1961 ->
-/// 2230). Returns its size.
-ClusterSize BestKCluster(const std::vector<std::vector<PeakPair>>& mic_pairs, double t_s,
-                         const SendingTimeVoteOptions& options, std::vector<int>* chosen, double* cost) {
+/// Calls visit(size, cost, members) for the pairs of one emission sharing K under hypothesis
+/// t_s at every point tried: every pair's K (exact stamps share it exactly) and the lower end of
+/// its interval (every maximal set of intervals sharing a point contains the largest lower end
+/// among its members, so no such set is missed). A centre pair's own tolerance alone (the rule
+/// before) left out true pairs of far microphones, whose K is noisier, around a near one, and a
+/// wrong cluster of as many microphones won. Measured and not kept: re-centring each cluster once
+/// on its members' mean (the office hold-out's emissions without a fix 1961 -> 2230).
+template <typename Visit>
+void ForEachCluster(const std::vector<std::vector<PeakPair>>& mic_pairs, double t_s,
+                    const SendingTimeVoteOptions& options, Visit&& visit) {
   const std::vector<KEntry> entries = KEntries(mic_pairs, t_s, options);
   const double max_tol_s2 = MaxTolerance(entries);
-  chosen->assign(kKinds * mic_pairs.size(), -1);
-  ClusterSize best;
-  *cost = 0.0;
   std::vector<double> distance(kKinds * mic_pairs.size());
   std::vector<int> members(kKinds * mic_pairs.size());
   for (const KEntry& entry : entries) {
     for (const double point_s2 : {entry.k_s2, entry.k_s2 - entry.tol_s2}) {
-      double point_cost = 0.0;
-      const ClusterSize size = ClusterAt(entries, point_s2, max_tol_s2, &members, &distance, &point_cost);
-      if (size.Beats(best, point_cost, *cost)) {
-        best = size;
-        *cost = point_cost;
-        *chosen = members;
-      }
+      double cost = 0.0;
+      const ClusterSize size = ClusterAt(entries, point_s2, max_tol_s2, &members, &distance, &cost);
+      visit(size, cost, members);
     }
   }
+}
+
+/// The largest set of pairs of one emission sharing K under hypothesis t_s (ForEachCluster): per
+/// slot the pair index (or -1). Returns its size.
+ClusterSize BestKCluster(const std::vector<std::vector<PeakPair>>& mic_pairs, double t_s,
+                         const SendingTimeVoteOptions& options, std::vector<int>* chosen, double* cost) {
+  chosen->assign(kKinds * mic_pairs.size(), -1);
+  ClusterSize best;
+  *cost = 0.0;
+  ForEachCluster(mic_pairs, t_s, options, [&](const ClusterSize& size, double point_cost, const std::vector<int>& members) {
+    if (size.Beats(best, point_cost, *cost)) {
+      best = size;
+      *cost = point_cost;
+      *chosen = members;
+    }
+  });
   return best;
 }
 
@@ -401,30 +410,21 @@ ClusterSize BestKCluster(const std::vector<std::vector<PeakPair>>& mic_pairs, do
 /// BestKCluster ranks them (most pairs first), among equals the tightest.
 std::vector<std::vector<int>> KClusters(const std::vector<std::vector<PeakPair>>& mic_pairs, double t_s,
                                         const SendingTimeVoteOptions& options) {
-  const std::vector<KEntry> entries = KEntries(mic_pairs, t_s, options);
-  const double max_tol_s2 = MaxTolerance(entries);
   struct Ranked {
     ClusterSize size;
     double cost;
     std::vector<int> members;
   };
   std::vector<Ranked> clusters;
-  std::vector<double> distance(kKinds * mic_pairs.size());
-  std::vector<int> members(kKinds * mic_pairs.size());
-  for (const KEntry& entry : entries) {
-    for (const double point_s2 : {entry.k_s2, entry.k_s2 - entry.tol_s2}) {
-      double cost = 0.0;
-      const ClusterSize size = ClusterAt(entries, point_s2, max_tol_s2, &members, &distance, &cost);
-      if (size.mics < 3) continue;
-      const auto same =
-          std::find_if(clusters.begin(), clusters.end(), [&](const Ranked& r) { return r.members == members; });
-      if (same == clusters.end()) {
-        clusters.push_back({size, cost, members});
-      } else {
-        same->cost = std::min(same->cost, cost);
-      }
+  ForEachCluster(mic_pairs, t_s, options, [&](const ClusterSize& size, double cost, const std::vector<int>& members) {
+    if (size.mics < 3) return;
+    const auto same = std::find_if(clusters.begin(), clusters.end(), [&](const Ranked& r) { return r.members == members; });
+    if (same == clusters.end()) {
+      clusters.push_back({size, cost, members});
+    } else {
+      same->cost = std::min(same->cost, cost);
     }
-  }
+  });
   // A cluster contained in another (its pairs all the other's: the points between two lower
   // ends cover fewer intervals) is no alternative of its own.
   const auto within = [](const std::vector<int>& a, const std::vector<int>& b) {

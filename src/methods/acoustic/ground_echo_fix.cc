@@ -394,32 +394,29 @@ GroundEchoFixer::StampSupport GroundEchoFixer::SupportAt(const Vec3& position_m,
                                                         const std::vector<std::vector<double>>& stamps_s) const {
   const double gate_m = 3.0 * sigma_m_;
   StampSupport out;
-  // The index of the stamp nearest to range_m within the gate, other than the ones already
-  // taken by the microphone's other arrivals (-1: none); its miss and score are added.
-  const auto explained = [&](const std::vector<double>& list_s, double range_m, int taken, int also_taken = -1,
-                             int third_taken = -1) {
-    double nearest_m = gate_m;
-    int index = -1;
-    for (std::size_t i = 0; i < list_s.size(); ++i) {
-      const double miss_m = std::abs(c_mps_ * list_s[i] - origin_m - range_m);
-      const auto n = static_cast<int>(i);
-      const bool free = n != taken && n != also_taken && n != third_taken;
-      if (free && miss_m <= nearest_m) nearest_m = miss_m, index = static_cast<int>(i);
-    }
-    if (index >= 0) {
+  // Each microphone's modelled arrivals in order: the LOS, the floor echo, and (when known) the
+  // ceiling and the floor-ceiling echo; each takes the nearest stamp within the gate that an
+  // earlier arrival of the microphone has not taken.
+  const std::vector<Vec3>* receivers[] = {&mics_m_, &floor_images_m_, &ceiling_images_m_, &floor_ceiling_images_m_};
+  std::vector<int> taken;
+  for (std::size_t m = 0; m < mics_m_.size(); ++m) {
+    const std::vector<double>& list_s = stamps_s[m];
+    taken.clear();
+    for (const std::vector<Vec3>* images : receivers) {
+      if (images->empty()) continue;
+      const double range_m = (position_m - (*images)[m]).norm();
+      double nearest_m = gate_m;
+      int index = -1;
+      for (std::size_t i = 0; i < list_s.size(); ++i) {
+        const double miss_m = std::abs(c_mps_ * list_s[i] - origin_m - range_m);
+        const bool free = std::find(taken.begin(), taken.end(), static_cast<int>(i)) == taken.end();
+        if (free && miss_m <= nearest_m) nearest_m = miss_m, index = static_cast<int>(i);
+      }
+      if (index < 0) continue;
+      taken.push_back(index);
       out.rows += 1;
       out.sum_sq_m2 += nearest_m * nearest_m;
       out.score += 9.0 - nearest_m * nearest_m / (sigma_m_ * sigma_m_);
-    }
-    return index;
-  };
-  for (std::size_t m = 0; m < mics_m_.size(); ++m) {
-    const int los = explained(stamps_s[m], (position_m - mics_m_[m]).norm(), -1);
-    const int floor = explained(stamps_s[m], (position_m - floor_images_m_[m]).norm(), los);
-    int ceiling = -1;
-    if (!ceiling_images_m_.empty()) ceiling = explained(stamps_s[m], (position_m - ceiling_images_m_[m]).norm(), los, floor);
-    if (!floor_ceiling_images_m_.empty()) {
-      explained(stamps_s[m], (position_m - floor_ceiling_images_m_[m]).norm(), los, floor, ceiling);
     }
   }
   return out;
