@@ -880,6 +880,43 @@ TEST(VoteSendingTimeAt, EachPairIsTestedWithItsOwnTolerance) {
   }
 }
 
+// The points tried between the intervals' lower ends cover subsets of the largest cluster (a
+// far microphone's interval ends where a near one's begins). Such a subset is the same reading
+// of the same stamps with a microphone fewer: it is no alternative for the fit to test, only a
+// duplicate that costs a fit and can win on a chance tie.
+TEST(VoteSendingTimeAt, AClusterContainedInAnotherIsNoAlternative) {
+  const double t0_s = 0.02;
+  const Vec3 sender(3.0, 2.0, 1.3);
+  const std::vector<Vec3> mics{Vec3(2.0, 1.0, 4.85), Vec3(4.0, 3.5, 4.85), Vec3(14.0, 9.0, 4.85),
+                               Vec3(13.0, -6.0, 4.85)};
+  SendingTimeVoteOptions options;
+  options.mic_height_spread_m = 0.0;
+  EmissionStamps e;
+  for (std::size_t m = 0; m < mics.size(); ++m) {
+    const LosGroundStamps s = Stamps(sender, mics[m], t0_s);
+    const double tolerance_s2 =
+        options.pile_sigmas * 2.0 * options.stamp_sigma_s * std::hypot(s.los_s - t0_s, s.ground_s - t0_s);
+    // The far pairs' K 0.9 of their tolerance above and below the near ones'.
+    const double sign = m == 2 ? 1.0 : (m == 3 ? -1.0 : 0.0);
+    e.mic_stamps_s.push_back({s.los_s, s.ground_s + sign * 0.9 * tolerance_s2 / (2.0 * (s.ground_s - t0_s))});
+  }
+  const std::vector<EmissionStamps> emissions{e};
+  const auto vote = VoteSendingTimeAt(emissions, t0_s, options);
+  ASSERT_TRUE(vote.has_value());
+  for (std::size_t m = 0; m < mics.size(); ++m) EXPECT_EQ(vote->chosen.back()[m].ground_index, 1) << m;
+  // Every alternative reads some microphone differently from the chosen cluster.
+  for (const auto& alternative : vote->alternatives) {
+    bool differs = false;
+    for (std::size_t m = 0; m < mics.size(); ++m) {
+      const auto& a = alternative[m];
+      const auto& c = vote->chosen.back()[m];
+      differs = differs || (a.los_index >= 0 && (a.los_index != c.los_index || a.ground_index != c.ground_index ||
+                                                 a.floor_ceiling_index != c.floor_ceiling_index));
+    }
+    EXPECT_TRUE(differs);
+  }
+}
+
 TEST(VoteSendingTime, RefusesMoreCombinationsThanAllowedAndInvalidOptions) {
   core::Rng rng(14);
   SimOptions sim;
