@@ -304,7 +304,7 @@ double MaxTolerance(const std::vector<KEntry>& entries) {
 /// *members, their count, and in *cost their squared misses from the members' weighted mean K
 /// in units of their tolerances (MSAC-like: typically each below 4).
 ClusterSize ClusterAt(const std::vector<KEntry>& entries, double point_s2, double max_tol_s2,
-                      std::vector<int>* members, std::vector<double>* distance, double* cost) {
+                      bool floor_ceiling_alone, std::vector<int>* members, std::vector<double>* distance, double* cost) {
   std::fill(members->begin(), members->end(), -1);
   std::fill(distance->begin(), distance->end(), std::numeric_limits<double>::infinity());
   std::vector<const KEntry*> member_entry(members->size(), nullptr);
@@ -332,18 +332,21 @@ ClusterSize ClusterAt(const std::vector<KEntry>& entries, double point_s2, doubl
     }
   }
   // A microphone's floor-ceiling pair is left out of the cluster
-  //  - without its floor pair: where the floor-ceiling echo (two reflections, a longer path) is
-  //    heard, the floor echo (one, shorter) mostly is too. Counted, such pairs let a reading of
-  //    the floor pairs as floor-ceiling ones (a sender lower by (C - h) (C + z) / C) compete
-  //    through chance stamps in its floor slots, in rooms that return no second order; kept as
-  //    rows, the chance ones bias t_0 there (both measured: docs/results/acoustic.md);
-  //  - unless its stamp comes after the floor echo's: the floor-ceiling image (h_m - 2 C) is
+  //  - without its floor pair, unless floor_ceiling_alone: where the floor-ceiling echo (two
+  //    reflections, a longer path) is heard, the floor echo (one, shorter) mostly is too.
+  //    Counted, such pairs let a reading of the floor pairs as floor-ceiling ones (a sender lower
+  //    by (C - h) (C + z) / C) compete through chance stamps in its floor slots, in rooms that
+  //    return no second order; kept as rows, the chance ones bias t_0 there (both measured:
+  //    docs/results/acoustic.md). In a room that does return it, a body that shadows the floor
+  //    echo leaves the floor-ceiling one alone (FillChosen);
+  //  - when its stamp comes before the floor echo's: the floor-ceiling image (h_m - 2 C) is
   //    farther than the floor image (-h_m) from any sender (this also keeps one stamp from
   //    being both echoes).
   for (std::size_t slot = kFloorCeiling; slot < members->size(); slot += kKinds) {
     if ((*members)[slot] < 0) continue;
     const std::size_t floor = slot - kFloorCeiling;
-    if ((*members)[floor] >= 0 && member_entry[slot]->later_s > member_entry[floor]->later_s) continue;
+    const bool with_floor = (*members)[floor] >= 0;
+    if (with_floor ? member_entry[slot]->later_s > member_entry[floor]->later_s : floor_ceiling_alone) continue;
     (*members)[slot] = -1;
     member_entry[slot] = nullptr;
     --size.rows;
@@ -375,7 +378,7 @@ ClusterSize ClusterAt(const std::vector<KEntry>& entries, double point_s2, doubl
 /// on its members' mean (the office hold-out's emissions without a fix 1961 -> 2230).
 template <typename Visit>
 void ForEachCluster(const std::vector<std::vector<PeakPair>>& mic_pairs, double t_s,
-                    const SendingTimeVoteOptions& options, Visit&& visit) {
+                    const SendingTimeVoteOptions& options, bool floor_ceiling_alone, Visit&& visit) {
   const std::vector<KEntry> entries = KEntries(mic_pairs, t_s, options);
   const double max_tol_s2 = MaxTolerance(entries);
   std::vector<double> distance(kKinds * mic_pairs.size());
@@ -383,7 +386,7 @@ void ForEachCluster(const std::vector<std::vector<PeakPair>>& mic_pairs, double 
   for (const KEntry& entry : entries) {
     for (const double point_s2 : {entry.k_s2, entry.k_s2 - entry.tol_s2}) {
       double cost = 0.0;
-      const ClusterSize size = ClusterAt(entries, point_s2, max_tol_s2, &members, &distance, &cost);
+      const ClusterSize size = ClusterAt(entries, point_s2, max_tol_s2, floor_ceiling_alone, &members, &distance, &cost);
       visit(size, cost, members);
     }
   }
@@ -396,7 +399,7 @@ ClusterSize BestKCluster(const std::vector<std::vector<PeakPair>>& mic_pairs, do
   chosen->assign(kKinds * mic_pairs.size(), -1);
   ClusterSize best;
   *cost = 0.0;
-  ForEachCluster(mic_pairs, t_s, options, [&](const ClusterSize& size, double point_cost, const std::vector<int>& members) {
+  ForEachCluster(mic_pairs, t_s, options, false, [&](const ClusterSize& size, double point_cost, const std::vector<int>& members) {
     if (size.Beats(best, point_cost, *cost)) {
       best = size;
       *cost = point_cost;
@@ -407,16 +410,18 @@ ClusterSize BestKCluster(const std::vector<std::vector<PeakPair>>& mic_pairs, do
 }
 
 /// Every distinct K cluster of at least three microphones of one emission under t_s, ranked as
-/// BestKCluster ranks them (most pairs first), among equals the tightest.
+/// BestKCluster ranks them (most pairs first), among equals the tightest; floor_ceiling_alone:
+/// see ClusterAt.
 std::vector<std::vector<int>> KClusters(const std::vector<std::vector<PeakPair>>& mic_pairs, double t_s,
-                                        const SendingTimeVoteOptions& options) {
+                                        const SendingTimeVoteOptions& options, bool floor_ceiling_alone) {
   struct Ranked {
     ClusterSize size;
     double cost;
     std::vector<int> members;
   };
   std::vector<Ranked> clusters;
-  ForEachCluster(mic_pairs, t_s, options, [&](const ClusterSize& size, double cost, const std::vector<int>& members) {
+  ForEachCluster(mic_pairs, t_s, options, floor_ceiling_alone, [&](const ClusterSize& size, double cost,
+                                                                    const std::vector<int>& members) {
     if (size.mics < 3) return;
     const auto same = std::find_if(clusters.begin(), clusters.end(), [&](const Ranked& r) { return r.members == members; });
     if (same == clusters.end()) {
@@ -741,14 +746,38 @@ std::vector<MicStampChoice> ChosenStamps(const std::vector<std::vector<PeakPair>
   return chosen;
 }
 
+/// The fraction of the selected floor pairs whose microphone has a selected floor-ceiling pair
+/// too, over every emission: how often the room returns the floor-ceiling echo where the floor
+/// echo is heard; 0 without floor pairs.
+double FloorCeilingHeardFraction(const Selection& selection) {
+  std::size_t with_floor = 0, with_both = 0;
+  for (const auto& members : selection) {
+    for (std::size_t slot = 0; slot < members.size(); slot += kKinds) {
+      if (members[slot + kFloor] < 0) continue;
+      ++with_floor;
+      if (members[slot + kFloorCeiling] >= 0) ++with_both;
+    }
+  }
+  return with_floor == 0 ? 0.0 : static_cast<double>(with_both) / static_cast<double>(with_floor);
+}
+
 /// Every emission's chosen stamps; and the last emission's other K clusters at the vote's t_0.
+/// Among those, a microphone may be read from its floor-ceiling pair alone (its floor echo
+/// missed: a body shadowing the downward path, measured in the second-order examples) when the
+/// window shows the room returns that echo at most microphones where the floor echo is heard
+/// (FloorCeilingHeardFraction above one half, i.e. the echo is more often heard than missed).
+/// Measured: 0.74-1.00 per window in a world with second-order echoes, 0-0.30 (median 0.04,
+/// chance pairs) without. Only for the alternatives: the vote's own search for t_0 keeps the
+/// rule (chance pairs of that reading bias t_0 in every world: docs/results/acoustic.md).
 void FillChosen(const PairTable& pairs, const Selection& selection, const SendingTimeVoteOptions& options,
                 SendingTimeVote* vote) {
   vote->chosen.clear();
   for (std::size_t e = 0; e < pairs.size(); ++e) vote->chosen.push_back(ChosenStamps(pairs[e], selection[e]));
   vote->alternatives.clear();
+  vote->floor_ceiling_heard_fraction = FloorCeilingHeardFraction(selection);
   if (pairs.empty() || options.method != SendingTimeVoteMethod::kConsensus) return;
-  for (const auto& members : KClusters(pairs.back(), vote->t0_s, options)) {
+  const bool floor_ceiling_alone = vote->floor_ceiling_heard_fraction > 0.5;
+  for (const auto& members : KClusters(pairs.back(), vote->t0_s, options, floor_ceiling_alone)) {
     if (members == selection.back()) continue;
     vote->alternatives.push_back(ChosenStamps(pairs.back(), members));
   }

@@ -761,6 +761,71 @@ TEST(VoteSendingTime, InARoomWithoutSecondOrderTheFloorEchoesAreNotReadAsFloorCe
   }
 }
 
+// A body that shadows the downward path takes a microphone's floor echo but not its floor-
+// ceiling echo (which leaves the phone upward). In a room whose window shows that echo at most
+// microphones that hear the floor echo, the last emission's alternatives read such microphones
+// from the floor-ceiling pair alone; in a room that never returned it, they do not (there a stamp
+// in that place is a chance one).
+TEST(VoteSendingTimeAt, AFloorCeilingEchoWithoutItsFloorEchoIsReadWhereTheRoomReturnsIt) {
+  const std::vector<Vec3> mics = NineMics(false);
+  const double t0_s = 0.0123;
+  const std::vector<std::size_t> shadowed{0, 3, 6, 7};  // the last emission's floor echo missed here
+  const auto window = [&](bool second_order_room) {
+    std::vector<EmissionStamps> emissions;
+    const std::vector<Vec3> senders = Senders();
+    for (std::size_t e = 0; e < senders.size(); ++e) {
+      const Vec3& sender = senders[e];
+      const bool last = e + 1 == senders.size();
+      EmissionStamps emission;
+      for (std::size_t m = 0; m < mics.size(); ++m) {
+        const auto arrival = [&](const Vec3& p) { return t0_s + (p - mics[m]).norm() / kC; };
+        const bool floor_missed = last && std::find(shadowed.begin(), shadowed.end(), m) != shadowed.end();
+        std::vector<double> stamps{arrival(sender)};
+        if (!floor_missed) stamps.push_back(arrival(Vec3(sender.x(), sender.y(), -sender.z())));
+        if (second_order_room || last) stamps.push_back(arrival(Vec3(sender.x(), sender.y(), 2.0 * kCeilingM + sender.z())));
+        emission.mic_stamps_s.push_back(stamps);
+      }
+      emissions.push_back(emission);
+    }
+    return emissions;
+  };
+  SendingTimeVoteOptions options = KnownGeometry(mics);
+  options.ceiling_height_m = kCeilingM;
+  // Some reading of the last emission takes every microphone: the shadowed ones from their
+  // floor-ceiling pair (stamps LOS, floor-ceiling), the others from both echoes.
+  const auto reads_every_microphone = [&](const std::vector<MicStampChoice>& c) {
+    for (std::size_t m = 0; m < mics.size(); ++m) {
+      const bool floor_missed = std::find(shadowed.begin(), shadowed.end(), m) != shadowed.end();
+      const MicStampChoice expected = floor_missed ? MicStampChoice{0, -1, 1} : MicStampChoice{0, 1, 2};
+      if (c[m].los_index != expected.los_index || c[m].ground_index != expected.ground_index ||
+          c[m].floor_ceiling_index != expected.floor_ceiling_index) {
+        return false;
+      }
+    }
+    return true;
+  };
+  for (const bool second_order_room : {true, false}) {
+    SCOPED_TRACE(second_order_room);
+    const std::vector<EmissionStamps> emissions = window(second_order_room);
+    const auto vote = VoteSendingTimeAt(emissions, t0_s, options);
+    ASSERT_TRUE(vote.has_value());
+    EXPECT_NEAR(vote->t0_s, t0_s, 1e-9);
+    bool found = reads_every_microphone(vote->chosen.back());
+    for (const auto& alternative : vote->alternatives) found = found || reads_every_microphone(alternative);
+    if (second_order_room) {
+      // 5 emissions x 9 microphones and the last's 5 hear both echoes.
+      EXPECT_DOUBLE_EQ(vote->floor_ceiling_heard_fraction, 1.0);
+      EXPECT_TRUE(found);
+    } else {
+      EXPECT_LT(vote->floor_ceiling_heard_fraction, 0.5);
+      EXPECT_FALSE(found);
+      for (const auto& alternative : vote->alternatives) {
+        for (const auto& c : alternative) EXPECT_FALSE(c.floor_ceiling_index >= 0 && c.ground_index < 0);
+      }
+    }
+  }
+}
+
 TEST(VoteSendingTime, FirstArrivalRuleKeepsTheLosAmongWallImagePairs) {
   // Wall echoes with their own floor echoes (images in vertical walls share t_0 and K): without
   // the rule a microphone may pair a wall echo with its floor echo; with it, the LOS is the first

@@ -198,9 +198,14 @@ struct SendingTimeVote {
   /// [emission][mic]: the chosen (L, r) pair: the most-voted in the pile (kThesisPile) or the
   /// inlier pair (kConsensus); -1 where none.
   std::vector<std::vector<MicStampChoice>> chosen;
+  /// The fraction of the chosen floor pairs (over every emission) whose microphone has a chosen
+  /// floor-ceiling pair too: how often the room returns the floor-ceiling echo where the floor
+  /// echo is heard (0 without floor pairs).
+  double floor_ceiling_heard_fraction = 0.0;
   /// kConsensus: the last emission's other K clusters of at least three microphones at t0_s,
   /// ranked as the winner (most pairs first), among equals the tightest; a cluster contained in
-  /// a larger one is not listed. Each is as consistent
+  /// a larger one is not listed. When floor_ceiling_heard_fraction exceeds one half, a
+  /// microphone may be read from its floor-ceiling pair alone (its floor echo missed). Each is as consistent
   /// in t_0 and K as `chosen` (a wall echo and its floor echo share K like the LOS and the floor
   /// echo, see los_is_first_arrival): the stamps alone cannot rank them, a position fit can.
   std::vector<std::vector<MicStampChoice>> alternatives;
