@@ -339,7 +339,7 @@ ClusterSize ClusterAt(const std::vector<KEntry>& entries, double point_s2, doubl
   //    return no second order; kept as rows, the chance ones bias t_0 there (both measured:
   //    docs/results/acoustic.md). In a room that does return it, a body that shadows the floor
   //    echo leaves the floor-ceiling one alone (FillChosen);
-  //  - when its stamp comes before the floor echo's: the floor-ceiling image (h_m - 2 C) is
+  //  - when its stamp does not come after the floor echo's: the floor-ceiling image (h_m - 2 C) is
   //    farther than the floor image (-h_m) from any sender (this also keeps one stamp from
   //    being both echoes).
   for (std::size_t slot = kFloorCeiling; slot < members->size(); slot += kKinds) {
@@ -746,37 +746,40 @@ std::vector<MicStampChoice> ChosenStamps(const std::vector<std::vector<PeakPair>
   return chosen;
 }
 
-/// The fraction of the selected floor pairs whose microphone has a selected floor-ceiling pair
-/// too, over every emission: how often the room returns the floor-ceiling echo where the floor
-/// echo is heard; 0 without floor pairs.
-double FloorCeilingHeardFraction(const Selection& selection) {
-  std::size_t with_floor = 0, with_both = 0;
+/// Over every emission, the selected floor pairs (*with_floor) and those whose microphone has a
+/// selected floor-ceiling pair too (*with_both).
+void CountFloorCeilingHeard(const Selection& selection, std::size_t* with_floor, std::size_t* with_both) {
+  *with_floor = *with_both = 0;
   for (const auto& members : selection) {
     for (std::size_t slot = 0; slot < members.size(); slot += kKinds) {
       if (members[slot + kFloor] < 0) continue;
-      ++with_floor;
-      if (members[slot + kFloorCeiling] >= 0) ++with_both;
+      ++*with_floor;
+      if (members[slot + kFloorCeiling] >= 0) ++*with_both;
     }
   }
-  return with_floor == 0 ? 0.0 : static_cast<double>(with_both) / static_cast<double>(with_floor);
 }
 
 /// Every emission's chosen stamps; and the last emission's other K clusters at the vote's t_0.
 /// Among those, a microphone may be read from its floor-ceiling pair alone (its floor echo
 /// missed: a body shadowing the downward path, measured in the second-order examples) when the
-/// window shows the room returns that echo at most microphones where the floor echo is heard
-/// (FloorCeilingHeardFraction above one half, i.e. the echo is more often heard than missed).
-/// Measured: 0.74-1.00 per window in a world with second-order echoes, 0-0.30 (median 0.04,
-/// chance pairs) without. Only for the alternatives: the vote's own search for t_0 keeps the
-/// rule (chance pairs of that reading bias t_0 in every world: docs/results/acoustic.md).
+/// window shows the room returns that echo at most microphones where the floor echo is heard:
+/// the echo more often heard than missed, significantly (the count above half the floor pairs by
+/// two binomial standard deviations, sqrt(n) / 2 each at p = 1/2: a short window's few pairs
+/// decide nothing). Measured: a fraction of 0.74-1.00 per window in a world with second-order
+/// echoes, 0-0.30 (median 0.04, chance pairs) without. Only for the alternatives: the vote's own
+/// search for t_0 keeps the rule (chance pairs of that reading bias t_0 in every world:
+/// docs/results/acoustic.md).
 void FillChosen(const PairTable& pairs, const Selection& selection, const SendingTimeVoteOptions& options,
                 SendingTimeVote* vote) {
   vote->chosen.clear();
   for (std::size_t e = 0; e < pairs.size(); ++e) vote->chosen.push_back(ChosenStamps(pairs[e], selection[e]));
   vote->alternatives.clear();
-  vote->floor_ceiling_heard_fraction = FloorCeilingHeardFraction(selection);
+  std::size_t with_floor = 0, with_both = 0;
+  CountFloorCeilingHeard(selection, &with_floor, &with_both);
+  const double n = static_cast<double>(with_floor);
+  vote->floor_ceiling_heard_fraction = with_floor == 0 ? 0.0 : static_cast<double>(with_both) / n;
   if (pairs.empty() || options.method != SendingTimeVoteMethod::kConsensus) return;
-  const bool floor_ceiling_alone = vote->floor_ceiling_heard_fraction > 0.5;
+  const bool floor_ceiling_alone = static_cast<double>(with_both) > 0.5 * n + std::sqrt(n);
   for (const auto& members : KClusters(pairs.back(), vote->t0_s, options, floor_ceiling_alone)) {
     if (members == selection.back()) continue;
     vote->alternatives.push_back(ChosenStamps(pairs.back(), members));

@@ -165,7 +165,8 @@ std::optional<GroundEchoFixer::SelectionFit> GroundEchoFixer::FitSelection(
   std::vector<int> row_mic;  // per row: its microphone
   // Per row: whether it is a floor-ceiling row. Such a row is left out alone when it misses (a
   // wrong pick of a late, weak echo says nothing about the microphone's LOS and floor rows); the
-  // microphones are tested on their LOS and floor rows.
+  // microphones are tested on their LOS and floor rows (a microphone an alternative reads from
+  // its floor-ceiling echo alone, its floor echo missed, on its LOS row).
   std::vector<bool> row_optional;
   for (std::size_t m = 0; m < mics_m_.size(); ++m) {
     const auto& c = chosen[m];

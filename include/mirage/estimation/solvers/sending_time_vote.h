@@ -152,10 +152,12 @@ struct SendingTimeVoteOptions {
   /// cluster would compete with the true one and, through the microphones' unequal heights,
   /// shift t_0 (measured: docs/results/acoustic.md, ch. 8). A cluster is then ranked by its rows
   /// (each microphone's floor pair and floor-ceiling pair), among equals by its floor rows, then
-  /// by cost. A floor-ceiling pair counts only beside its microphone's floor pair (the weaker,
-  /// longer echo is rarely heard without the stronger one): otherwise, in a room without second-
-  /// order echoes, the floor pairs read as floor-ceiling ones (a lower sender) gather chance
-  /// stamps as their floor pairs and compete.
+  /// by cost. In the vote a floor-ceiling pair counts only beside its microphone's floor pair
+  /// (the weaker, longer echo is rarely heard without the stronger one): otherwise, in a room
+  /// without second-order echoes, the floor pairs read as floor-ceiling ones (a lower sender)
+  /// gather chance stamps as their floor pairs and compete. The last emission's alternatives may
+  /// read a microphone from its floor-ceiling pair alone where the window shows the room returns
+  /// that echo (SendingTimeVote::floor_ceiling_heard_fraction).
   double ceiling_height_m = 0.0;
   /// The vote refuses inputs with more 4-tuples than this (>= 1), see CountVoteCombinations.
   /// 5e6: ~0.1 s of work and ~100 MB of candidates at most.
@@ -176,7 +178,8 @@ std::size_t CountVoteCombinations(std::span<const EmissionStamps> emissions, con
 struct MicStampChoice {
   int los_index = -1;
   int ground_index = -1;
-  /// The echo off the floor and then the ceiling (only with ceiling_height_m), -1 if none.
+  /// The echo off the floor and then the ceiling (only with ceiling_height_m), -1 if none. In
+  /// SendingTimeVote::alternatives it may be set while ground_index is -1 (the floor echo missed).
   int floor_ceiling_index = -1;
 };
 
@@ -200,12 +203,13 @@ struct SendingTimeVote {
   std::vector<std::vector<MicStampChoice>> chosen;
   /// The fraction of the chosen floor pairs (over every emission) whose microphone has a chosen
   /// floor-ceiling pair too: how often the room returns the floor-ceiling echo where the floor
-  /// echo is heard (0 without floor pairs).
+  /// echo is heard (0 without floor pairs, without ceiling_height_m and for kThesisPile).
   double floor_ceiling_heard_fraction = 0.0;
   /// kConsensus: the last emission's other K clusters of at least three microphones at t0_s,
   /// ranked as the winner (most pairs first), among equals the tightest; a cluster contained in
-  /// a larger one is not listed. When floor_ceiling_heard_fraction exceeds one half, a
-  /// microphone may be read from its floor-ceiling pair alone (its floor echo missed). Each is as consistent
+  /// a larger one is not listed. When floor_ceiling_heard_fraction exceeds one half by two
+  /// binomial standard deviations, a microphone may be read from its floor-ceiling pair alone
+  /// (its floor echo missed). Each is as consistent
   /// in t_0 and K as `chosen` (a wall echo and its floor echo share K like the LOS and the floor
   /// echo, see los_is_first_arrival): the stamps alone cannot rank them, a position fit can.
   std::vector<std::vector<MicStampChoice>> alternatives;

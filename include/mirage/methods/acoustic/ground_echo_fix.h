@@ -38,7 +38,8 @@
 //     |S - M'_i| = c (T_r,i - t_0) and the floor-ceiling rows (the microphone mirrored in the
 //     ceiling, then the floor: (x, y, 2 f - (2 C - z))), from the last fix, else below the
 //     microphones' centroid. A floor-ceiling row beyond 3 sigma is left out alone; the
-//     microphones are tested on their LOS and floor rows.
+//     microphones are tested on their LOS and floor rows (one read from its floor-ceiling
+//     echo alone, its floor echo missed, on its LOS row).
 //     When a row lies beyond 3 sigma, the largest consensus of microphones (every smallest set
 //     with rows for the unknowns solved, at least three with a solved offset; the microphones
 //     within 3 sigma of its fix counted, ties to the fix explaining more of all the emission's
