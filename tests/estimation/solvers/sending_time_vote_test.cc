@@ -890,6 +890,30 @@ TEST(VoteSendingTimeAt, ReturnsTheOtherKClustersAsAlternativesLargestFirst) {
   }
 }
 
+/// Two near and two far microphones around a sender (t_0 = 0.02 s), the options with the
+/// tolerances from the stamps' noise alone, and each pair's K tolerance (s^2).
+struct TolerancedPairs {
+  double t0_s = 0.02;
+  Vec3 sender{3.0, 2.0, 1.3};
+  std::vector<Vec3> mics{Vec3(2.0, 1.0, 4.85), Vec3(4.0, 3.5, 4.85), Vec3(14.0, 9.0, 4.85), Vec3(13.0, -6.0, 4.85)};
+  SendingTimeVoteOptions options = [] {
+    SendingTimeVoteOptions o;
+    o.mic_height_spread_m = 0.0;  // tolerances from the stamps' noise alone
+    return o;
+  }();
+  /// The K tolerance of microphone m's exact (LOS, floor) pair.
+  [[nodiscard]] double ToleranceS2(std::size_t m) const {
+    const LosGroundStamps s = Stamps(sender, mics[m], t0_s);
+    return options.pile_sigmas * 2.0 * options.stamp_sigma_s * std::hypot(s.los_s - t0_s, s.ground_s - t0_s);
+  }
+  /// Microphone m's (LOS, floor) stamps with K = (T_r - t_0)^2 - (T_L - t_0)^2 moved by `fraction`
+  /// of its tolerance through T_r.
+  [[nodiscard]] std::vector<double> MovedPair(std::size_t m, double fraction) const {
+    const LosGroundStamps s = Stamps(sender, mics[m], t0_s);
+    return {s.los_s, s.ground_s + fraction * ToleranceS2(m) / (2.0 * (s.ground_s - t0_s))};
+  }
+};
+
 // A pair's K is noisier the farther its microphone (dK = 2 (T_r - t_0) dT_r - 2 (T_L - t_0) dT_L):
 // the microphones share K when each lies within its own tolerance of a common value. Here
 // the two far ones are 0.9 of their tolerance off on either side: each is farther from the
@@ -897,31 +921,19 @@ TEST(VoteSendingTimeAt, ReturnsTheOtherKClustersAsAlternativesLargestFirst) {
 // holds all four (the cluster around one centre pair with its own tolerance, the rule before,
 // found three microphones and left the fourth to its wrong reading).
 TEST(VoteSendingTimeAt, EachPairIsTestedWithItsOwnTolerance) {
-  const double t0_s = 0.02;
-  const Vec3 sender(3.0, 2.0, 1.3);
-  const std::vector<Vec3> mics{Vec3(2.0, 1.0, 4.85), Vec3(4.0, 3.5, 4.85), Vec3(14.0, 9.0, 4.85),
-                               Vec3(13.0, -6.0, 4.85)};
-  SendingTimeVoteOptions options;
-  options.mic_height_spread_m = 0.0;  // tolerances from the stamps' noise alone
-  EmissionStamps e;
+  const TolerancedPairs p;
   std::vector<double> tolerance_s2;
-  for (const Vec3& mic : mics) {
-    const LosGroundStamps s = Stamps(sender, mic, t0_s);
-    e.mic_stamps_s.push_back({s.los_s, s.ground_s});
-    tolerance_s2.push_back(options.pile_sigmas * 2.0 * options.stamp_sigma_s * std::hypot(s.los_s - t0_s, s.ground_s - t0_s));
-  }
+  for (std::size_t m = 0; m < p.mics.size(); ++m) tolerance_s2.push_back(p.ToleranceS2(m));
   ASSERT_GT(0.9 * tolerance_s2[2], tolerance_s2[0]);  // a far pair is off by more than a near tolerance
   ASSERT_GT(0.9 * tolerance_s2[3], tolerance_s2[1]);
   ASSERT_GT(0.9 * (tolerance_s2[2] + tolerance_s2[3]), std::max(tolerance_s2[2], tolerance_s2[3]));
-  // K = (T_r - t_0)^2 - (T_L - t_0)^2 moved by +-0.9 of the far pairs' tolerances through T_r.
-  for (const auto& [m, sign] : {std::pair<std::size_t, double>{2, 1.0}, {3, -1.0}}) {
-    double& ground_s = e.mic_stamps_s[m][1];
-    ground_s += sign * 0.9 * tolerance_s2[m] / (2.0 * (ground_s - t0_s));
-  }
+  // The far pairs' K moved by +-0.9 of their tolerances.
+  EmissionStamps e;
+  for (std::size_t m = 0; m < p.mics.size(); ++m) e.mic_stamps_s.push_back(p.MovedPair(m, m == 2 ? 0.9 : (m == 3 ? -0.9 : 0.0)));
   const std::vector<EmissionStamps> emissions{e};
-  const auto vote = VoteSendingTimeAt(emissions, t0_s, options);
+  const auto vote = VoteSendingTimeAt(emissions, p.t0_s, p.options);
   ASSERT_TRUE(vote.has_value());
-  for (std::size_t m = 0; m < mics.size(); ++m) {
+  for (std::size_t m = 0; m < p.mics.size(); ++m) {
     SCOPED_TRACE(m);
     EXPECT_EQ(vote->chosen.back()[m].los_index, 0);
     EXPECT_EQ(vote->chosen.back()[m].ground_index, 1);
@@ -930,13 +942,9 @@ TEST(VoteSendingTimeAt, EachPairIsTestedWithItsOwnTolerance) {
   // tolerance below, the far ones 0.9 of theirs above. Only a point at an interval's lower end
   // (the largest among them) holds all three.
   EmissionStamps three;
-  for (const std::size_t m : {std::size_t{0}, std::size_t{2}, std::size_t{3}}) {
-    const LosGroundStamps s = Stamps(sender, mics[m], t0_s);
-    const double sign = m == 0 ? -1.0 : 1.0;
-    three.mic_stamps_s.push_back({s.los_s, s.ground_s + sign * 0.9 * tolerance_s2[m] / (2.0 * (s.ground_s - t0_s))});
-  }
+  for (const std::size_t m : {std::size_t{0}, std::size_t{2}, std::size_t{3}}) three.mic_stamps_s.push_back(p.MovedPair(m, m == 0 ? -0.9 : 0.9));
   const std::vector<EmissionStamps> three_emissions{three};
-  const auto three_vote = VoteSendingTimeAt(three_emissions, t0_s, options);
+  const auto three_vote = VoteSendingTimeAt(three_emissions, p.t0_s, p.options);
   ASSERT_TRUE(three_vote.has_value());
   for (std::size_t m = 0; m < 3; ++m) {
     SCOPED_TRACE(m);
@@ -950,29 +958,18 @@ TEST(VoteSendingTimeAt, EachPairIsTestedWithItsOwnTolerance) {
 // of the same stamps with a microphone fewer: it is no alternative for the fit to test, only a
 // duplicate that costs a fit and can win on a chance tie.
 TEST(VoteSendingTimeAt, AClusterContainedInAnotherIsNoAlternative) {
-  const double t0_s = 0.02;
-  const Vec3 sender(3.0, 2.0, 1.3);
-  const std::vector<Vec3> mics{Vec3(2.0, 1.0, 4.85), Vec3(4.0, 3.5, 4.85), Vec3(14.0, 9.0, 4.85),
-                               Vec3(13.0, -6.0, 4.85)};
-  SendingTimeVoteOptions options;
-  options.mic_height_spread_m = 0.0;
+  const TolerancedPairs p;
+  // The far pairs' K 0.9 of their tolerance above and below the near ones'.
   EmissionStamps e;
-  for (std::size_t m = 0; m < mics.size(); ++m) {
-    const LosGroundStamps s = Stamps(sender, mics[m], t0_s);
-    const double tolerance_s2 =
-        options.pile_sigmas * 2.0 * options.stamp_sigma_s * std::hypot(s.los_s - t0_s, s.ground_s - t0_s);
-    // The far pairs' K 0.9 of their tolerance above and below the near ones'.
-    const double sign = m == 2 ? 1.0 : (m == 3 ? -1.0 : 0.0);
-    e.mic_stamps_s.push_back({s.los_s, s.ground_s + sign * 0.9 * tolerance_s2 / (2.0 * (s.ground_s - t0_s))});
-  }
+  for (std::size_t m = 0; m < p.mics.size(); ++m) e.mic_stamps_s.push_back(p.MovedPair(m, m == 2 ? 0.9 : (m == 3 ? -0.9 : 0.0)));
   const std::vector<EmissionStamps> emissions{e};
-  const auto vote = VoteSendingTimeAt(emissions, t0_s, options);
+  const auto vote = VoteSendingTimeAt(emissions, p.t0_s, p.options);
   ASSERT_TRUE(vote.has_value());
-  for (std::size_t m = 0; m < mics.size(); ++m) EXPECT_EQ(vote->chosen.back()[m].ground_index, 1) << m;
+  for (std::size_t m = 0; m < p.mics.size(); ++m) EXPECT_EQ(vote->chosen.back()[m].ground_index, 1) << m;
   // Every alternative reads some microphone differently from the chosen cluster.
   for (const auto& alternative : vote->alternatives) {
     bool differs = false;
-    for (std::size_t m = 0; m < mics.size(); ++m) {
+    for (std::size_t m = 0; m < p.mics.size(); ++m) {
       const auto& a = alternative[m];
       const auto& c = vote->chosen.back()[m];
       differs = differs || (a.los_index >= 0 && (a.los_index != c.los_index || a.ground_index != c.ground_index ||
