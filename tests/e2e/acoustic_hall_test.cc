@@ -52,5 +52,30 @@ grid:
   EXPECT_FALSE(testing::FindVariant(summaries, "method.estimator=rekf").overall.los_labels.has_value());
 }
 
+// Table 5.1's order (means, 2-D): REKF + IMU < REKF < EKF + IMU (300 runs: 0.059 / 0.216 /
+// 0.563 m; the thesis 0.13 / 0.16 / 0.38). The virtual-sender test (acoustic_virtual_sender_test)
+// costs the REKF + IMU nothing here: a track is confirmed only once its prediction explains the
+// stamps, so the corrections after a poor start are taken (without that, 20 runs: 0.22 m).
+TEST(AcousticHall, Table51OrderHoldsAndTheVirtualSenderTestCostsNothing) {
+  const auto summaries = testing::RunExtendedExample("acoustic_hall.yaml", R"(
+method: {virtual_sender_probability: 1.0e-3}
+grid:
+  - {method.estimator: [rekf]}
+  - {method.estimator: [rekf, ekf], method.inertial: [true]}
+  - {method.inertial: [true], method.virtual_sender_probability: [0]}
+)",
+                                                     20);
+  const auto mean = [&](const std::string& name) {
+    return testing::FindVariant(summaries, name).overall.error.mean;
+  };
+  const double rekf_imu = mean("method.estimator=rekf, method.inertial=true");
+  const double rekf = mean("method.estimator=rekf");
+  const double ekf_imu = mean("method.estimator=ekf, method.inertial=true");
+  const double without_test = mean("method.inertial=true, method.virtual_sender_probability=0");
+  EXPECT_LT(rekf_imu, rekf);
+  EXPECT_LT(rekf, ekf_imu);
+  EXPECT_LE(rekf_imu, 1.05 * without_test);  // 20 runs: 0.052 against 0.056 m
+}
+
 }  // namespace
 }  // namespace mirage::pipeline

@@ -9,6 +9,7 @@
 
 #include <Eigen/Cholesky>
 
+#include "mirage/estimation/gates/chi2.h"
 #include "mirage/estimation/meas/toa.h"
 #include "mirage/estimation/robust/hampel.h"
 #include "mirage/estimation/solvers/toa_nlls.h"
@@ -130,6 +131,8 @@ void AcousticEstimator::Start(const Vec3& position_m, double position_sigma_m,
   }
   started_ = true;
   have_emission_ = false;
+  confirmed_ = false;
+  virtual_sender_ = false;
   first_search_s_.reset();
   search_whole_plan_ = false;
   // The dead reckoning's heading is taken again from this track's velocity (after a restart the
@@ -436,7 +439,7 @@ std::vector<AcousticEstimator::Row> AcousticEstimator::FirstArrivalRows(const St
 
 std::optional<estimation::IrlsResult> AcousticEstimator::UpdateWithRows(const std::vector<Row>& rows,
                                                                        const std::optional<core::PositionIncrement>& increment,
-                                                                       const Eigen::VectorXd& x_lin) const {
+                                                                       const Eigen::VectorXd& x_lin, bool robust) const {
   const int d = dim();
   const int n = static_cast<int>(x_.size());
   const long m = static_cast<long>(rows.size()) + (increment ? 2 : 0);
@@ -464,8 +467,39 @@ std::optional<estimation::IrlsResult> AcousticEstimator::UpdateWithRows(const st
   }
   innovation += H * (x_lin - x_);
   estimation::IrlsOptions irls = options_.irls;
-  irls.robust = options_.estimator == "rekf";
+  irls.robust = robust && options_.estimator == "rekf";
   return estimation::IrlsUpdate(P_, H, innovation, R, irls);
+}
+
+AcousticEstimator::VirtualSenderCheck AcousticEstimator::CheckVirtualSender(const std::vector<Row>& rows,
+                                                                          const core::PositionIncrement& increment,
+                                                                          const estimation::IrlsResult& update) const {
+  const int d = dim();
+  VirtualSenderCheck out;
+  // "Most" stamps: more than half, and more than the unknowns (position and b) so that their
+  // agreement is evidence.
+  if (static_cast<int>(rows.size()) < d + 2) return out;
+  const auto most = [&](int count) { return 2 * count > static_cast<int>(rows.size()) && count >= d + 2; };
+  const Eigen::VectorXd& dx = update.dx;
+  const double gate_m = 3.0 * options_.range_sigma_m;
+  int exact_at_prediction = 0, exact_at_update = 0;
+  for (const auto& row : rows) {
+    const double innovation_m = row.z_m - row.path.predicted_m;
+    const double moved_m = row.path.d_sender.head(d).dot(dx.head(d)) + dx(2 * d);
+    exact_at_prediction += std::abs(innovation_m) <= gate_m ? 1 : 0;
+    exact_at_update += std::abs(innovation_m - moved_m) <= gate_m ? 1 : 0;
+  }
+  out.prediction_exact = most(exact_at_prediction);
+  out.update_exact = most(exact_at_update);
+  // The update's position against the dead reckoning from the last emission's posterior (the
+  // clone as predicted, not as the update moved it): S - (S_prev + delta) with covariance
+  // P_prev + Q_delta (Eq. 5.38-5.39 as a test).
+  const Vec2 miss_m = increment.delta_m - ((x_ + dx).head<2>() - x_.segment<2>(clone_offset()));
+  const Eigen::Matrix2d cov_m2 = increment.covariance_m2 + P_.block<2, 2>(clone_offset(), clone_offset()) +
+                                 1e-6 * Eigen::Matrix2d::Identity();
+  out.jump = miss_m.dot(cov_m2.ldlt().solve(miss_m)) >
+             estimation::Chi2Quantile(1.0 - options_.virtual_sender_probability, 2);
+  return out;
 }
 
 StepOutput AcousticEstimator::Filter(const core::Epoch& epoch) {
@@ -520,6 +554,7 @@ StepOutput AcousticEstimator::Filter(const core::Epoch& epoch) {
   // than the echoes are from each other; an estimate is not.
   struct Outcome {
     std::optional<estimation::IrlsResult> update;
+    std::vector<Row> rows;  // the update's stamp rows
     long stamp_rows = 0;
     bool had_rows = false;
     int explained = 0;  // stamps within 3 sigma of a predicted path at the final estimate
@@ -545,6 +580,7 @@ StepOutput AcousticEstimator::Filter(const core::Epoch& epoch) {
       if (!candidate) break;
       o.update = std::move(candidate);
       o.stamp_rows = static_cast<long>(rows.size());
+      o.rows = rows;
       x_lin = x_ + o.update->dx;
       P_lin = o.update->P;
     }
@@ -571,6 +607,45 @@ StepOutput AcousticEstimator::Filter(const core::Epoch& epoch) {
     const bool better = other.explained > outcome.explained ||
                         (other.explained == outcome.explained && other.prior_d2 < outcome.prior_d2);
     if (other.update && (!outcome.update || better)) outcome = std::move(other);
+  }
+  // Sec. 5.2's virtual sender, for the thesis's filter (direct paths only) with dead reckoning:
+  // facing a wall, every stamp is that wall's echo and fits the sender mirrored behind it as
+  // consistently as direct paths fit the sender. Such stamps are correlated outliers, which no
+  // per-row weight rejects (ten agreeing stamps outvote the increment's two rows): the event is
+  // one of the whole emission. A confirmed track whose update breaks the dead reckoning beyond
+  // the chi-square quantile at 1 - virtual_sender_probability coasts on the dead reckoning, its
+  // stamps left out, until an update explains most stamps and agrees with the dead reckoning
+  // again. Confirmed: its prediction explained most stamps and its update kept to the dead
+  // reckoning, with no correction since (an update explaining most stamps its prediction did
+  // not) and the stamps unexplained for at most virtual_sender_onset_s plus one interval. An
+  // unconfirmed track takes a jump as a correction: there its own past is what is in doubt
+  // (after a poor start, measured in docs/results/acoustic.md). With the echoes predicted the same
+  // stamps are the wall's echoes of the true sender, and no such event is needed.
+  if (passes == 1 && options_.estimator == "rekf" && options_.virtual_sender_probability > 0.0 && increment &&
+      outcome.update) {
+    const VirtualSenderCheck check = CheckVirtualSender(outcome.rows, *increment, *outcome.update);
+    bool coast = false;
+    if (virtual_sender_) {
+      coast = virtual_sender_ = check.jump || !check.update_exact;
+      if (!coast) verified_s_ = epoch.t_s;
+    } else {
+      if (epoch.t_s - verified_s_ > options_.virtual_sender_onset_s + options_.emission_interval_s) confirmed_ = false;
+      if (confirmed_ && check.jump) {
+        coast = virtual_sender_ = true;
+      } else if (check.prediction_exact && !check.jump) {
+        confirmed_ = true;  // the stamps and the dead reckoning both agree with the track
+        verified_s_ = epoch.t_s;
+      } else if (check.update_exact) {
+        confirmed_ = false;  // a correction
+      }
+    }
+    if (coast) {
+      outcome.rows.clear();
+      outcome.stamp_rows = 0;
+      // The dead reckoning is what the track trusts here: its rows are not reweighted (ten prior
+      // rows would outvote the increment's two as the stamps did).
+      outcome.update = UpdateWithRows({}, increment, x_, false);
+    }
   }
   const auto& update = outcome.update;
   const long stamp_rows = outcome.stamp_rows;

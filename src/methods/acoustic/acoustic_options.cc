@@ -89,6 +89,21 @@ const core::OptionsDescriptor<AcousticOptions>& AcousticOptionsDescriptor() {
                   .formula = "clutter_rate / 40 m",
                   .needs = {core::PhysicalKey::kClutterRate},
                   .compute = [](const core::PhysicalKeys& k) { return *k.clutter_rate / 40.0; }}});
+    d.Number(&O::virtual_sender_probability,
+             {.key = "virtual_sender_probability",
+              .range = ValueRange::RightOpen(0.0, 1.0),
+              .doc = "The REKF without the echo model (echo_order 0) with dead reckoning: probability per emission that "
+                     "the stamps come from one mirror image of the sender (Sec. 5.2's virtual sender). A confirmed track "
+                     "(its prediction explained most stamps) whose update breaks the dead reckoning beyond its chi-square "
+                     "quantile at 1 - this probability coasts on the dead reckoning until an update explains most stamps "
+                     "and agrees with it again. 0: off. 1e-3."});
+    d.Number(&O::virtual_sender_onset_s,
+             {.key = "virtual_sender_onset_s",
+              .unit = "s",
+              .range = ValueRange::Above(0.0),
+              .doc = "The longest a virtual sender's onset takes (the phone turning to face the wall): emissions within "
+                     "it fit neither the track nor the mirror, so a track stays confirmed until its stamps have gone "
+                     "unexplained for longer than this plus one emission interval. 0.25 s."});
     d.Number(&O::gate_chi2, {.key = "gate_chi2",
                              .range = ValueRange::AtLeast(0.0),
                              .doc = "Chi-square gate on one stamp's innovation (1 degree of freedom); 0 = off, as in "

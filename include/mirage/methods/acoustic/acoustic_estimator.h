@@ -156,10 +156,23 @@ class AcousticEstimator final : public Estimator {
                                                const Eigen::MatrixXd& P_lin, int echo_order) const;
   /// Each microphone's earliest stamp as its direct path (the shortest path arrives first), at x_lin.
   [[nodiscard]] std::vector<Row> FirstArrivalRows(const StampsByReceiver& stamps, const Eigen::VectorXd& x_lin) const;
-  /// The REKF/EKF update of the prediction (x_, P_) with the rows linearised at x_lin.
+  /// The REKF/EKF update of the prediction (x_, P_) with the rows linearised at x_lin; robust
+  /// false: every weight 1 (the EKF update) whatever the estimator.
   [[nodiscard]] std::optional<estimation::IrlsResult> UpdateWithRows(const std::vector<Row>& rows,
                                                                      const std::optional<core::PositionIncrement>& increment,
-                                                                     const Eigen::VectorXd& x_lin) const;
+                                                                     const Eigen::VectorXd& x_lin, bool robust = true) const;
+  /// What one emission's direct-path rows (linearised at the prediction) and its update say about
+  /// the virtual sender (options.virtual_sender_probability). "Most" stamps: more than half, and
+  /// at least d + 2 (more than the unknowns, so that their agreement is evidence).
+  struct VirtualSenderCheck {
+    bool prediction_exact = false;  ///< most stamps within 3 stamp sigmas of the prediction
+    bool update_exact = false;      ///< most stamps within 3 stamp sigmas of the update
+    /// The update's position breaks the dead reckoning from the last emission's posterior beyond
+    /// the chi-square quantile (2 degrees of freedom) at 1 - virtual_sender_probability.
+    bool jump = false;
+  };
+  [[nodiscard]] VirtualSenderCheck CheckVirtualSender(const std::vector<Row>& rows, const core::PositionIncrement& increment,
+                                                      const estimation::IrlsResult& update) const;
   StepOutput Filter(const core::Epoch& epoch);
   StepOutput Snapshot(const core::Epoch& epoch);
   StepOutput Combinatorial(const core::Epoch& epoch);
@@ -187,6 +200,11 @@ class AcousticEstimator final : public Estimator {
   std::optional<Vec3> start_m_;  // a given start, waiting for its first emission
   std::optional<PendingStart> pending_start_;
   std::optional<double> first_search_s_;  // the time of the first start search around the prior
+  /// The virtual-sender test's track state (Filter): confirmed, the time the stamps last
+  /// verified it (s), coasting through an episode.
+  bool confirmed_ = false;
+  double verified_s_ = 0.0;
+  bool virtual_sender_ = false;
   bool search_whole_plan_ = false;  // the track was lost: the start searches the whole plan
   MultipathFixOptions start_search_;  // the start's search, set once from the options
   std::optional<GroundEchoFixer> ground_echo_;  // estimator "ground_echo"
