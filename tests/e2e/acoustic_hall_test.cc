@@ -58,11 +58,11 @@ grid:
 // stamps, so the corrections after a poor start are taken (without that, 20 runs: 0.22 m).
 TEST(AcousticHall, Table51OrderHoldsAndTheVirtualSenderTestCostsNothing) {
   const auto summaries = testing::RunExtendedExample("acoustic_hall.yaml", R"(
-method: {virtual_sender_probability: 1.0e-3}
+method: {virtual_sender_false_alarm: 1.0e-3}
 grid:
   - {method.estimator: [rekf]}
   - {method.estimator: [rekf, ekf], method.inertial: [true]}
-  - {method.inertial: [true], method.virtual_sender_probability: [0]}
+  - {method.inertial: [true], method.virtual_sender_false_alarm: [0]}
 )",
                                                      20);
   const auto mean = [&](const std::string& name) {
@@ -71,7 +71,7 @@ grid:
   const double rekf_imu = mean("method.estimator=rekf, method.inertial=true");
   const double rekf = mean("method.estimator=rekf");
   const double ekf_imu = mean("method.estimator=ekf, method.inertial=true");
-  const double without_test = mean("method.inertial=true, method.virtual_sender_probability=0");
+  const double without_test = mean("method.inertial=true, method.virtual_sender_false_alarm=0");
   EXPECT_LT(rekf_imu, rekf);
   EXPECT_LT(rekf, ekf_imu);
   EXPECT_LE(rekf_imu, 1.05 * without_test);  // 20 runs: 0.052 against 0.056 m

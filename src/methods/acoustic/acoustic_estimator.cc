@@ -57,6 +57,9 @@ AcousticEstimator::AcousticEstimator(const AcousticOptions& options, const World
   los_.range_sigma_m = options_.range_sigma_m;
   los_.tdoa_bound = options_.tdoa_bound_gate;
   los_.tdoa_bound_sigmas = options_.tdoa_bound_sigmas;
+  if (options_.virtual_sender_false_alarm > 0.0) {
+    virtual_sender_chi2_ = estimation::Chi2Quantile(1.0 - options_.virtual_sender_false_alarm, 2);
+  }
   const auto& plan = world_.floor_plan;
   if (options_.estimator == "ground_echo") {
     ground_echo_.emplace(mics_m_, plan.floor_z_m(), c_mps_, options_.range_sigma_m, options_.emission_interval_s,
@@ -132,7 +135,7 @@ void AcousticEstimator::Start(const Vec3& position_m, double position_sigma_m,
   started_ = true;
   have_emission_ = false;
   confirmed_ = false;
-  virtual_sender_ = false;
+  coasting_ = false;
   first_search_s_.reset();
   search_whole_plan_ = false;
   // The dead reckoning's heading is taken again from this track's velocity (after a restart the
@@ -476,11 +479,18 @@ AcousticEstimator::VirtualSenderCheck AcousticEstimator::CheckVirtualSender(cons
                                                                           const estimation::IrlsResult& update) const {
   const int d = dim();
   VirtualSenderCheck out;
+  const Eigen::VectorXd& dx = update.dx;
+  // The update's position against the dead reckoning from the last emission's posterior (the
+  // clone as predicted, not as the update moved it): S - (S_prev + delta) with covariance
+  // P_prev + Q_delta (Eq. 5.38-5.39 as a test).
+  const Vec2 miss_m = increment.delta_m - ((x_ + dx).head<2>() - x_.segment<2>(clone_offset()));
+  const Eigen::Matrix2d cov_m2 = increment.covariance_m2 + P_.block<2, 2>(clone_offset(), clone_offset()) +
+                                 1e-6 * Eigen::Matrix2d::Identity();
+  out.breaks_dead_reckoning = miss_m.dot(cov_m2.ldlt().solve(miss_m)) > virtual_sender_chi2_;
   // "Most" stamps: more than half, and more than the unknowns (position and b) so that their
   // agreement is evidence.
   if (static_cast<int>(rows.size()) < d + 2) return out;
   const auto most = [&](int count) { return 2 * count > static_cast<int>(rows.size()) && count >= d + 2; };
-  const Eigen::VectorXd& dx = update.dx;
   const double gate_m = 3.0 * options_.range_sigma_m;
   int exact_at_prediction = 0, exact_at_update = 0;
   for (const auto& row : rows) {
@@ -491,14 +501,6 @@ AcousticEstimator::VirtualSenderCheck AcousticEstimator::CheckVirtualSender(cons
   }
   out.prediction_exact = most(exact_at_prediction);
   out.update_exact = most(exact_at_update);
-  // The update's position against the dead reckoning from the last emission's posterior (the
-  // clone as predicted, not as the update moved it): S - (S_prev + delta) with covariance
-  // P_prev + Q_delta (Eq. 5.38-5.39 as a test).
-  const Vec2 miss_m = increment.delta_m - ((x_ + dx).head<2>() - x_.segment<2>(clone_offset()));
-  const Eigen::Matrix2d cov_m2 = increment.covariance_m2 + P_.block<2, 2>(clone_offset(), clone_offset()) +
-                                 1e-6 * Eigen::Matrix2d::Identity();
-  out.jump = miss_m.dot(cov_m2.ldlt().solve(miss_m)) >
-             estimation::Chi2Quantile(1.0 - options_.virtual_sender_probability, 2);
   return out;
 }
 
@@ -613,38 +615,44 @@ StepOutput AcousticEstimator::Filter(const core::Epoch& epoch) {
   // consistently as direct paths fit the sender. Such stamps are correlated outliers, which no
   // per-row weight rejects (ten agreeing stamps outvote the increment's two rows): the event is
   // one of the whole emission. A confirmed track whose update breaks the dead reckoning beyond
-  // the chi-square quantile at 1 - virtual_sender_probability coasts on the dead reckoning, its
-  // stamps left out, until an update explains most stamps and agrees with the dead reckoning
-  // again. Confirmed: its prediction explained most stamps and its update kept to the dead
-  // reckoning, with no correction since (an update explaining most stamps its prediction did
-  // not) and the stamps unexplained for at most virtual_sender_onset_s plus one interval. An
-  // unconfirmed track takes a jump as a correction: there its own past is what is in doubt
-  // (after a poor start, measured in docs/results/acoustic.md). With the echoes predicted the same
-  // stamps are the wall's echoes of the true sender, and no such event is needed.
-  if (passes == 1 && options_.estimator == "rekf" && options_.virtual_sender_probability > 0.0 && increment &&
-      outcome.update) {
-    const VirtualSenderCheck check = CheckVirtualSender(outcome.rows, *increment, *outcome.update);
+  // the chi-square quantile at 1 - virtual_sender_false_alarm while its prediction does not
+  // explain the stamps (a mirror never fits the prediction; a dead-reckoning glitch does) coasts
+  // on the dead reckoning, its stamps left out, until an update explains most stamps and keeps to
+  // the dead reckoning again. Confirmed: its prediction explained most stamps and its update kept
+  // to the dead reckoning, with no correction since (an update explaining most stamps its
+  // prediction did not) and the stamps unexplained for at most virtual_sender_onset_s plus one
+  // interval. An unconfirmed track takes a jump as a correction: there its own past is what is in
+  // doubt (after a poor start, measured in docs/results/acoustic.md). With the echoes predicted
+  // the same stamps are the wall's echoes of the true sender, and no such event is needed.
+  if (passes == 1 && options_.estimator == "rekf" && options_.virtual_sender_false_alarm > 0.0 && outcome.update) {
     bool coast = false;
-    if (virtual_sender_) {
-      coast = virtual_sender_ = check.jump || !check.update_exact;
-      if (!coast) verified_s_ = epoch.t_s;
+    if (!increment) {
+      coast = coasting_;  // no dead reckoning to test against: a coast goes on
     } else {
-      if (epoch.t_s - verified_s_ > options_.virtual_sender_onset_s + options_.emission_interval_s) confirmed_ = false;
-      if (confirmed_ && check.jump) {
-        coast = virtual_sender_ = true;
-      } else if (check.prediction_exact && !check.jump) {
-        confirmed_ = true;  // the stamps and the dead reckoning both agree with the track
-        verified_s_ = epoch.t_s;
-      } else if (check.update_exact) {
-        confirmed_ = false;  // a correction
+      const VirtualSenderCheck check = CheckVirtualSender(outcome.rows, *increment, *outcome.update);
+      if (coasting_) {
+        coast = check.breaks_dead_reckoning || !check.update_exact;
+        if (!coast) verified_s_ = epoch.t_s;
+      } else {
+        if (epoch.t_s - verified_s_ > options_.virtual_sender_onset_s + options_.emission_interval_s) confirmed_ = false;
+        if (confirmed_ && check.breaks_dead_reckoning && !check.prediction_exact) {
+          coast = true;
+        } else if (check.prediction_exact && !check.breaks_dead_reckoning) {
+          confirmed_ = true;  // the stamps and the dead reckoning both agree with the track
+          verified_s_ = epoch.t_s;
+        } else if (check.update_exact) {
+          confirmed_ = false;  // a correction
+        }
       }
     }
+    coasting_ = coast;
     if (coast) {
       outcome.rows.clear();
       outcome.stamp_rows = 0;
+      outcome.had_rows = increment.has_value();
       // The dead reckoning is what the track trusts here: its rows are not reweighted (ten prior
-      // rows would outvote the increment's two as the stamps did).
-      outcome.update = UpdateWithRows({}, increment, x_, false);
+      // rows would outvote the increment's two as the stamps did). Without it, the prediction.
+      outcome.update = increment ? UpdateWithRows({}, increment, x_, false) : std::nullopt;
     }
   }
   const auto& update = outcome.update;

@@ -89,14 +89,14 @@ const core::OptionsDescriptor<AcousticOptions>& AcousticOptionsDescriptor() {
                   .formula = "clutter_rate / 40 m",
                   .needs = {core::PhysicalKey::kClutterRate},
                   .compute = [](const core::PhysicalKeys& k) { return *k.clutter_rate / 40.0; }}});
-    d.Number(&O::virtual_sender_probability,
-             {.key = "virtual_sender_probability",
+    d.Number(&O::virtual_sender_false_alarm,
+             {.key = "virtual_sender_false_alarm",
               .range = ValueRange::RightOpen(0.0, 1.0),
-              .doc = "The REKF without the echo model (echo_order 0) with dead reckoning: probability per emission that "
-                     "the stamps come from one mirror image of the sender (Sec. 5.2's virtual sender). A confirmed track "
-                     "(its prediction explained most stamps) whose update breaks the dead reckoning beyond its chi-square "
-                     "quantile at 1 - this probability coasts on the dead reckoning until an update explains most stamps "
-                     "and agrees with it again. 0: off. 1e-3."});
+              .doc = "The REKF with direct paths only and dead reckoning: the level of its virtual-sender test (Sec. "
+                     "5.2), the chance that an update breaks the dead reckoning this far without one. A confirmed track "
+                     "(its prediction explained most stamps) whose update breaks the dead reckoning beyond its "
+                     "chi-square quantile at 1 - this level coasts on it until an update explains most stamps and agrees "
+                     "with it again. 0: off. 1e-3."});
     d.Number(&O::virtual_sender_onset_s,
              {.key = "virtual_sender_onset_s",
               .unit = "s",

@@ -162,14 +162,14 @@ class AcousticEstimator final : public Estimator {
                                                                      const std::optional<core::PositionIncrement>& increment,
                                                                      const Eigen::VectorXd& x_lin, bool robust = true) const;
   /// What one emission's direct-path rows (linearised at the prediction) and its update say about
-  /// the virtual sender (options.virtual_sender_probability). "Most" stamps: more than half, and
+  /// the virtual sender (options.virtual_sender_false_alarm). "Most" stamps: more than half, and
   /// at least d + 2 (more than the unknowns, so that their agreement is evidence).
   struct VirtualSenderCheck {
     bool prediction_exact = false;  ///< most stamps within 3 stamp sigmas of the prediction
     bool update_exact = false;      ///< most stamps within 3 stamp sigmas of the update
     /// The update's position breaks the dead reckoning from the last emission's posterior beyond
-    /// the chi-square quantile (2 degrees of freedom) at 1 - virtual_sender_probability.
-    bool jump = false;
+    /// the chi-square quantile (2 degrees of freedom) at 1 - virtual_sender_false_alarm.
+    bool breaks_dead_reckoning = false;
   };
   [[nodiscard]] VirtualSenderCheck CheckVirtualSender(const std::vector<Row>& rows, const core::PositionIncrement& increment,
                                                       const estimation::IrlsResult& update) const;
@@ -201,10 +201,11 @@ class AcousticEstimator final : public Estimator {
   std::optional<PendingStart> pending_start_;
   std::optional<double> first_search_s_;  // the time of the first start search around the prior
   /// The virtual-sender test's track state (Filter): confirmed, the time the stamps last
-  /// verified it (s), coasting through an episode.
+  /// verified it (s), coasting through an episode; its chi-square quantile.
   bool confirmed_ = false;
   double verified_s_ = 0.0;
-  bool virtual_sender_ = false;
+  bool coasting_ = false;
+  double virtual_sender_chi2_ = 0.0;
   bool search_whole_plan_ = false;  // the track was lost: the start searches the whole plan
   MultipathFixOptions start_search_;  // the start's search, set once from the options
   std::optional<GroundEchoFixer> ground_echo_;  // estimator "ground_echo"

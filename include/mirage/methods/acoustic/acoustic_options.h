@@ -68,15 +68,15 @@ struct AcousticOptions {
   /// (or goes below the floor, above the heights the start searches) by more than 3 sigma, and
   /// start again from all the stamps over the whole plan (multipath_fix.h).
   bool restart_lost_track = true;
-  /// The REKF without the echo model (echo_order 0) with dead reckoning: the probability, per
-  /// emission, that its stamps come from one mirror image of the sender (the virtual sender of
-  /// Sec. 5.2: facing a wall, only its echoes arrive), in [0, 1); 0: off. Such stamps agree with
-  /// each other, so no per-row weight rejects them. A confirmed track (its prediction explained
-  /// most stamps) whose update breaks the dead reckoning beyond its chi-square quantile at 1 -
-  /// this probability coasts on the dead reckoning, stamps left out, until an update explains
-  /// most stamps and agrees with the dead reckoning again. 1e-3 (results alike from 0.05 to 1e-9:
-  /// docs/results/acoustic.md).
-  double virtual_sender_probability = 1e-3;
+  /// The REKF with direct paths only (echo_order 0, or no floor plan to predict echoes from) and
+  /// dead reckoning: the level of its virtual-sender test (Sec. 5.2: facing a wall, only its echoes
+  /// arrive, and they fit the sender mirrored behind it), the chance that an update breaks the
+  /// dead reckoning this far without one, in [0, 1); 0: off. Such stamps agree with each other, so
+  /// no per-row weight rejects them. A confirmed track (its prediction explained most stamps) whose
+  /// update breaks the dead reckoning beyond its chi-square quantile at 1 - this level coasts on
+  /// the dead reckoning, stamps left out, until an update explains most stamps and agrees with the
+  /// dead reckoning again. 1e-3 (1e-2 to 1e-9 measured alike: docs/results/acoustic.md).
+  double virtual_sender_false_alarm = 1e-3;
   /// The longest a virtual sender's onset takes (s), > 0: the phone turning to face the wall.
   /// Emissions within it mix direct paths and echoes and fit neither the track nor the mirror, so
   /// a track stays confirmed until its stamps have gone unexplained for longer than this plus
