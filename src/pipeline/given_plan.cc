@@ -10,7 +10,12 @@ GivenPlan MakeGivenPlan(const Experiment& e, core::Rng rng) {
   std::vector<geometry::Wall> walls;
   const auto& truth = e.plan.walls();
   for (std::size_t s = 0; s < truth.size(); ++s) {
-    const Vec2 unit(rng.Uniform(-0.5, 0.5), rng.Uniform(-0.5, 0.5));
+    // One draw per statement: the order of a constructor's arguments is unspecified (g++ draws
+    // the last first, clang the first), so the plan would differ between compilers. y first: the
+    // order the published numbers were drawn in.
+    const double unit_y = rng.Uniform(-0.5, 0.5);
+    const double unit_x = rng.Uniform(-0.5, 0.5);
+    const Vec2 unit(unit_x, unit_y);
     if (!e.in_plan[s]) continue;
     Vec2 shift = e.plan_error.wall_shift_m * unit;
     const Vec2 n = geometry::WallNormal(truth[s]);

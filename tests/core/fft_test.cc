@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "mirage/core/rng.h"
+#include "rng_vectors.h"
 
 namespace mirage::core {
 namespace {
@@ -25,7 +26,10 @@ Complex Twiddle(std::size_t k, std::size_t n, std::size_t size) {
 std::vector<Complex> RandomSignal(std::size_t size, std::uint64_t seed) {
   Rng rng(seed);
   std::vector<Complex> x(size);
-  for (auto& v : x) v = Complex(rng.Normal(), rng.Normal());
+  for (auto& v : x) {
+    const Vec2 re_im = testing::NormalVec2(rng);
+    v = Complex(re_im.x(), re_im.y());
+  }
   return x;
 }
 

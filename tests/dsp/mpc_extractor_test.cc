@@ -13,6 +13,7 @@
 #include "mirage/channel/cir_synthesizer.h"
 #include "mirage/core/constants.h"
 #include "mirage/core/rng.h"
+#include "rng_vectors.h"
 
 namespace mirage::dsp {
 namespace {
@@ -109,7 +110,8 @@ TEST(MpcExtractor, RecoversASingleNoiselessPathAtRandomFractionalDelays) {
 
   for (int trial = 0; trial < 30; ++trial) {
     const double delay_s = rng.Uniform(10e-9, 100e-9);
-    const Complex alpha = std::polar(rng.Uniform(0.05, 1.0), rng.Uniform(-core::kPi, core::kPi));
+    const Vec2 magnitude_phase = testing::UniformVec2(rng, Vec2(0.05, -core::kPi), Vec2(1.0, core::kPi));
+    const Complex alpha = std::polar(magnitude_phase.x(), magnitude_phase.y());
 
     const auto mpcs = extractor.Extract(Noiseless(synth, {Path(delay_s, alpha)}));
 

@@ -39,7 +39,8 @@ State RandomState(std::uint64_t seed) {
   layout.Append(blocks::kVelocity, 0);
   layout.Append(blocks::kVirtualAnchor, 3);
   layout.Append(blocks::kWallOffset, 1);
-  return State(layout, RandomMatrix(7, 1, rng), RandomSpd(7, rng), 1.0);
+  const Eigen::MatrixXd P = RandomSpd(7, rng);  // drawn first: see tests/rng_vectors.h
+  return State(layout, RandomMatrix(7, 1, rng), P, 1.0);
 }
 
 // Identity of size n with F placed at [offset, offset + k).
@@ -227,7 +228,8 @@ TEST(CovarianceOpsMarginalize, UndoesAugment) {
   const State before = state;
   core::Rng rng(51);
 
-  CovarianceOps::Augment(state, blocks::kVirtualAnchor, 5, Eigen::Vector2d(1, 2), RandomMatrix(2, 7, rng), RandomSpd(2, rng));
+  const Eigen::MatrixXd R = RandomSpd(2, rng);  // drawn first: see tests/rng_vectors.h
+  CovarianceOps::Augment(state, blocks::kVirtualAnchor, 5, Eigen::Vector2d(1, 2), RandomMatrix(2, 7, rng), R);
   CovarianceOps::Marginalize(state, kVa5);
 
   EXPECT_EQ(state.dimension(), 7);

@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "mirage/core/rng.h"
+#include "rng_vectors.h"
 
 namespace mirage::estimation {
 namespace {
@@ -216,7 +217,7 @@ ConsistencyResult RunConsistencyTrials(int trials, double true_sigma, double fil
   core::Rng rng(2014);
   ConsistencyResult out;
   for (int trial = 0; trial < trials; ++trial) {
-    const Eigen::Vector2d truth = m0 + L * Eigen::Vector2d(rng.Normal(), rng.Normal());
+    const Eigen::Vector2d truth = m0 + L * testing::NormalVec2(rng);
     State state = PositionState(m0, P0);
     for (const auto& anchor : anchors) {
       const Eigen::RowVector2d u = (m0 - anchor).normalized().transpose();

@@ -14,6 +14,7 @@
 #include "mirage/estimation/ekf_update.h"
 #include "mirage/estimation/measurement_row.h"
 #include "mirage/estimation/state.h"
+#include "rng_vectors.h"
 
 namespace mirage::estimation {
 namespace {
@@ -112,7 +113,7 @@ TEST(ManifoldBlock, CorrectAppliesBoxPlusToTheQuaternionAndAddsToEuclideanBlocks
 
 TEST(ManifoldBlock, RowJacobianMatchesCentralDifferencesThroughBoxPlus) {
   core::Rng rng(11);
-  const Eigen::Quaterniond q = Exp(Eigen::Vector3d(rng.Normal(), rng.Normal(), rng.Normal()));
+  const Eigen::Quaterniond q = Exp(testing::NormalVec3(rng));
   const State state = MixedState(q, 0.1);
   const Eigen::Vector3d v(0.3, -1.2, 0.7);
   for (int i = 0; i < 3; ++i) {

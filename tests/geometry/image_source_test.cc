@@ -15,6 +15,7 @@
 
 #include "mirage/core/rng.h"
 #include "mirage/geometry/segment.h"
+#include "rng_vectors.h"
 
 namespace mirage::geometry {
 namespace {
@@ -124,7 +125,7 @@ TEST(MirrorAtWall, UsesTheOneMirrorFormulaOfMirrorPointBitForBit) {
   const FloorPlan plan = Pentagon();
   core::Rng rng(7, 0);
   for (int trial = 0; trial < 20; ++trial) {
-    const Vec2 x(rng.Uniform(-3.0, 9.0), rng.Uniform(-3.0, 9.0));
+    const Vec2 x = testing::UniformVec2(rng, Vec2(-3.0, -3.0), Vec2(9.0, 9.0));
     for (const Wall& wall : plan.walls()) EXPECT_EQ(MirrorAtWall(wall, x), MirrorPoint(x, wall.start_m, wall.end_m));
   }
 }
@@ -185,8 +186,8 @@ TEST(ComputeImagePath, DerivativesMatchCentralDifferencesAtSeededRandomPointsUpT
   core::Rng rng(1, 0);
   const std::vector<WallSequence> sequences{{}, {0}, {3}, {0, 2}, {4, 1}, {1, 3, 0}, {2, 0, 2}};
   for (int trial = 0; trial < 5; ++trial) {
-    const Vec2 tx(rng.Uniform(1.0, 5.0), rng.Uniform(1.0, 4.0));
-    const Vec2 rx(rng.Uniform(1.0, 5.0), rng.Uniform(1.0, 4.0));
+    const Vec2 tx = testing::UniformVec2(rng, Vec2(1.0, 1.0), Vec2(5.0, 4.0));
+    const Vec2 rx = testing::UniformVec2(rng, Vec2(1.0, 1.0), Vec2(5.0, 4.0));
     for (const auto& s : sequences) {
       ExpectDerivativesMatchFiniteDifferences(plan, s, tx, rx);
       if (!s.empty()) ExpectSelfDerivativeMatches(plan, s, tx);
@@ -221,8 +222,8 @@ TEST(ComputeImagePath, DerivativesMatchCentralDifferencesIn3DAtSeededRandomPoint
   core::Rng rng(3, 0);
   const std::vector<WallSequence> sequences{{}, {0}, {3}, {0, 2}, {4, 1}, {1, 3, 0}, {2, 0, 2}};
   for (int trial = 0; trial < 5; ++trial) {
-    const Vec3 tx(rng.Uniform(1.0, 5.0), rng.Uniform(1.0, 4.0), rng.Uniform(0.0, 3.0));
-    const Vec3 rx(rng.Uniform(1.0, 5.0), rng.Uniform(1.0, 4.0), rng.Uniform(0.0, 3.0));
+    const Vec3 tx = testing::UniformVec3(rng, Vec3(1.0, 1.0, 0.0), Vec3(5.0, 4.0, 3.0));
+    const Vec3 rx = testing::UniformVec3(rng, Vec3(1.0, 1.0, 0.0), Vec3(5.0, 4.0, 3.0));
     for (const auto& s : sequences) ExpectDerivativesMatchFiniteDifferences(plan, s, tx, rx);
   }
 }
@@ -309,8 +310,8 @@ TEST(TraceImagePath, PutsEveryReflectionPointOnItsSegmentObeyingTheLawOfReflecti
   core::Rng rng(11, 0);
   int traced = 0;
   for (int trial = 0; trial < 40; ++trial) {
-    const Vec2 tx(rng.Uniform(0.5, 6.0), rng.Uniform(0.5, 4.0));
-    const Vec2 rx(rng.Uniform(0.5, 6.0), rng.Uniform(0.5, 4.0));
+    const Vec2 tx = testing::UniformVec2(rng, Vec2(0.5, 0.5), Vec2(6.0, 4.0));
+    const Vec2 rx = testing::UniformVec2(rng, Vec2(0.5, 0.5), Vec2(6.0, 4.0));
     if (plan.InsideObstacle(tx) || plan.InsideObstacle(rx)) continue;
     for (const auto& s : AllSequences(5, 3)) {
       const auto points = TraceImagePath(plan, s, tx, rx);
@@ -348,8 +349,8 @@ TEST(TraceImagePath, FindsTheSingleBounceOfSimilarTrianglesAndNothingElse) {
   core::Rng rng(5, 0);
   int exists = 0, missing = 0;
   for (int trial = 0; trial < 200; ++trial) {
-    const Vec2 tx(rng.Uniform(0.5, 6.0), rng.Uniform(0.5, 4.0));
-    const Vec2 rx(rng.Uniform(0.5, 6.0), rng.Uniform(0.5, 4.0));
+    const Vec2 tx = testing::UniformVec2(rng, Vec2(0.5, 0.5), Vec2(6.0, 4.0));
+    const Vec2 rx = testing::UniformVec2(rng, Vec2(0.5, 0.5), Vec2(6.0, 4.0));
     if (!plan.Encloses(tx) || !plan.Encloses(rx)) continue;
     for (int w = 0; w < 5; ++w) {
       const Wall& wall = plan.walls()[static_cast<std::size_t>(w)];
@@ -454,8 +455,8 @@ TEST(TraceImagePath, AgreesWithThePlanarTraceWhenHeightsAreEqual) {
   const FloorPlan plan = Pentagon({{Vec2(3.5, 2.0), 0.3, "pillar"}});
   core::Rng rng(13, 0);
   for (int trial = 0; trial < 10; ++trial) {
-    const Vec2 tx(rng.Uniform(0.5, 6.0), rng.Uniform(0.5, 4.0));
-    const Vec2 rx(rng.Uniform(0.5, 6.0), rng.Uniform(0.5, 4.0));
+    const Vec2 tx = testing::UniformVec2(rng, Vec2(0.5, 0.5), Vec2(6.0, 4.0));
+    const Vec2 rx = testing::UniformVec2(rng, Vec2(0.5, 0.5), Vec2(6.0, 4.0));
     for (const auto& s : AllSequences(5, 2)) {
       const auto flat = TraceImagePath(plan, s, tx, rx);
       const auto level = TraceImagePath(plan, s, At(tx, 1.4), At(rx, 1.4));
@@ -495,8 +496,8 @@ TEST(VisibleImagePaths, ListsExactlyTheSequencesWhosePathsTraceInOrder) {
   core::Rng rng(17, 0);
   int cut = 0;
   for (int trial = 0; trial < 6; ++trial) {
-    const Vec3 tx(rng.Uniform(0.5, 6.0), rng.Uniform(0.5, 4.0), rng.Uniform(0.0, 4.0));
-    const Vec3 rx(rng.Uniform(0.5, 6.0), rng.Uniform(0.5, 4.0), rng.Uniform(0.0, 2.0));
+    const Vec3 tx = testing::UniformVec3(rng, Vec3(0.5, 0.5, 0.0), Vec3(6.0, 4.0, 4.0));
+    const Vec3 rx = testing::UniformVec3(rng, Vec3(0.5, 0.5, 0.0), Vec3(6.0, 4.0, 2.0));
     std::vector<WallSequence> expected2, expected3;
     for (const auto& s : AllSequences(6, 3)) {
       if (TraceImagePath(plan, s, Vec2(tx.head<2>()), Vec2(rx.head<2>()))) expected2.push_back(s);

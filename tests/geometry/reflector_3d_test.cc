@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include "mirage/core/rng.h"
+#include "rng_vectors.h"
 
 namespace mirage::geometry {
 namespace {
@@ -23,7 +24,7 @@ constexpr double kTol = 1e-9;
 constexpr int kFloor = 0, kCeiling = 1, kWallY0 = 2, kWallXMax = 3, kWallX0 = 5;
 
 Vec3 RandomUnit(core::Rng& rng) {
-  return Vec3(rng.Normal(), rng.Normal(), rng.Normal()).normalized();
+  return testing::NormalVec3(rng).normalized();
 }
 
 // The law of reflection at vertex k of a path: incoming and outgoing directions make equal
@@ -59,9 +60,9 @@ TEST(MirrorAtPlane, IsAnInvolutionThatPreservesTheDistanceToThePlane) {
     Reflector3 r;
     r.u = RandomUnit(rng);
     r.v = r.u.cross(RandomUnit(rng)).normalized();
-    r.origin_m = Vec3(rng.Uniform(-5, 5), rng.Uniform(-5, 5), rng.Uniform(-5, 5));
+    r.origin_m = testing::UniformVec3(rng, Vec3(-5, -5, -5), Vec3(5, 5, 5));
     r.u_half_m = r.v_half_m = 1.0;
-    const Vec3 x(rng.Uniform(-5, 5), rng.Uniform(-5, 5), rng.Uniform(-5, 5));
+    const Vec3 x = testing::UniformVec3(rng, Vec3(-5, -5, -5), Vec3(5, 5, 5));
     const Vec3 image = MirrorAtPlane(r, x);
     const Vec3 n = r.normal();
 
@@ -273,8 +274,8 @@ TEST(SpecularPaths3, EqualsTracingEverySequenceInARoomWithPartitionsAndATable) {
   core::Rng rng(5);
   int found = 0;
   for (int trial = 0; trial < 20; ++trial) {
-    const Vec3 tx(rng.Uniform(0.5, 11.5), rng.Uniform(0.5, 8.5), rng.Uniform(0.9, 2.5));
-    const Vec3 rx(rng.Uniform(0.5, 11.5), rng.Uniform(0.5, 8.5), rng.Uniform(3.0, 4.4));
+    const Vec3 tx = testing::UniformVec3(rng, Vec3(0.5, 0.5, 0.9), Vec3(11.5, 8.5, 2.5));
+    const Vec3 rx = testing::UniformVec3(rng, Vec3(0.5, 0.5, 3.0), Vec3(11.5, 8.5, 4.4));
     const auto paths = SpecularPaths3(room, tx, rx, 3);
     std::vector<SpecularPath3> expected;
     std::vector<int> seq;

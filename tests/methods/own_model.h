@@ -16,6 +16,7 @@
 #include "mirage/core/rng.h"
 #include "mirage/core/types.h"
 #include "mirage/estimation/gates/chi2.h"
+#include "rng_vectors.h"
 
 namespace mirage::methods::testing {
 
@@ -40,7 +41,7 @@ struct CvTrack {
 /// drawn again (the filters need the room's geometry, which a model without walls does not know).
 inline CvTrack DrawCvTrajectory(const CvModel& model, const Vec2& start_m, int steps, core::Rng& rng,
                                 const std::function<bool(const Vec2&)>& inside) {
-  const auto normal2 = [&](double sigma) { return Vec2(sigma * rng.Normal(), sigma * rng.Normal()); };
+  const auto normal2 = [&](double sigma) { return Vec2(sigma * mirage::testing::NormalVec2(rng)); };
   const double dt = model.dt_s;
   for (;;) {
     CvTrack track{{start_m + normal2(model.position_sigma_m)}, {normal2(model.velocity_sigma_mps)}};

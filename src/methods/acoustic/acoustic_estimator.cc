@@ -712,7 +712,12 @@ StepOutput AcousticEstimator::Snapshot(const core::Epoch& epoch) {
   if (planar()) nlls.known_height_m = height_m_;
   std::optional<estimation::SolverFix> best;
   for (int k = 0; k < options_.nlls_starts; ++k) {
-    Vec3 start(rng_.Uniform(lo.x(), hi.x()), rng_.Uniform(lo.y(), hi.y()), planar() ? height_m_ : rng_.Uniform(0.0, lo.z()));
+    // One draw per statement (argument order is unspecified: the starts would differ between
+    // compilers); z, y, x: the order the published numbers were drawn in.
+    const double z_m = planar() ? height_m_ : rng_.Uniform(0.0, lo.z());
+    const double y_m = rng_.Uniform(lo.y(), hi.y());
+    const double x_m = rng_.Uniform(lo.x(), hi.x());
+    const Vec3 start(x_m, y_m, z_m);
     std::vector<double> implied;
     for (std::size_t i = 0; i < mics.size(); ++i) implied.push_back(rho_m[i] - (start - mics[i]).norm());
     const auto fix = estimation::SolveToaNlls(mics, rho_m, sigma_m, start, estimation::Median(implied), nlls);

@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "mirage/core/rng.h"
+#include "rng_vectors.h"
 
 namespace mirage::estimation {
 namespace {
@@ -57,7 +58,7 @@ TEST(FixPosition, NoisyFixErrorsAgreeWithTheReportedCovariance) {
   double nees = 0.0;
   const int trials = 400;
   for (int k = 0; k < trials; ++k) {
-    const Vec3 tag(rng.Uniform(1, 5), rng.Uniform(1, 4), rng.Uniform(0.3, 1.8));
+    const Vec3 tag = testing::UniformVec3(rng, Vec3(1, 1, 0.3), Vec3(5, 4, 1.8));
     const auto fix = FixPosition(kCeiling, Ranges(kCeiling, tag, 0.05, &rng), std::nullopt, 0.05);
     ASSERT_TRUE(fix.has_value());
     const Vec3 e = fix->position_m - tag;

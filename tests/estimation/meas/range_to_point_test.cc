@@ -10,6 +10,7 @@
 
 #include "estimation/jacobian_check.h"
 #include "mirage/core/rng.h"
+#include "rng_vectors.h"
 
 namespace mirage::estimation {
 namespace {
@@ -28,8 +29,8 @@ State AgentState(const Eigen::VectorXd& position, const BlockType& type) {
 TEST(RangeToPointRow, ThreeDimensionalRangeAndJacobianMatchCentralDifferences) {
   core::Rng rng(3);
   for (int trial = 0; trial < 20; ++trial) {
-    const Vec3 p(rng.Uniform(-5, 5), rng.Uniform(-5, 5), rng.Uniform(0, 3));
-    const Vec3 anchor(rng.Uniform(-5, 5), rng.Uniform(-5, 5), rng.Uniform(0, 3));
+    const Vec3 p = mirage::testing::UniformVec3(rng, Vec3(-5, -5, 0), Vec3(5, 5, 3));
+    const Vec3 anchor = mirage::testing::UniformVec3(rng, Vec3(-5, -5, 0), Vec3(5, 5, 3));
     const State state = AgentState(p, blocks::kPosition3);
     const Block position = state.layout().At(BlockKey(blocks::kPosition3, 0));
     const auto row = RangeToPointRow(state, position, anchor, 0.0, 0.01);

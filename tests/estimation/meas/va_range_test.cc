@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "mirage/core/rng.h"
+#include "rng_vectors.h"
 
 namespace mirage::estimation {
 namespace {
@@ -79,8 +80,8 @@ TEST(PredictVaRange, JacobiansMatchCentralDifferencesAtAGenericPoint) {
 TEST(PredictVaRange, JacobiansMatchCentralDifferencesAtSeededRandomPoints) {
   core::Rng rng(20140220);
   for (int i = 0; i < 200; ++i) {
-    const Vec2 p(rng.Uniform(-10.0, 10.0), rng.Uniform(-10.0, 10.0));
-    const Vec2 a(rng.Uniform(-30.0, 30.0), rng.Uniform(-30.0, 30.0));
+    const Vec2 p = testing::UniformVec2(rng, Vec2(-10.0, -10.0), Vec2(10.0, 10.0));
+    const Vec2 a = testing::UniformVec2(rng, Vec2(-30.0, -30.0), Vec2(30.0, 30.0));
     ExpectJacobiansMatch(p, a);
   }
 }
@@ -103,8 +104,8 @@ TEST(PredictVaRange, JacobiansMatchCentralDifferencesJustAboveTheDegenerateLimit
 TEST(PredictVaRange, JacobiansAreUnitVectorsAndOpposite) {
   core::Rng rng(7);
   for (int i = 0; i < 50; ++i) {
-    const Vec2 p(rng.Uniform(-5.0, 5.0), rng.Uniform(-5.0, 5.0));
-    const Vec2 a(rng.Uniform(-5.0, 5.0), rng.Uniform(-5.0, 5.0));
+    const Vec2 p = testing::UniformVec2(rng, Vec2(-5.0, -5.0), Vec2(5.0, 5.0));
+    const Vec2 a = testing::UniformVec2(rng, Vec2(-5.0, -5.0), Vec2(5.0, 5.0));
     const auto prediction = PredictVaRange(p, a);
     ASSERT_TRUE(prediction.has_value());
 

@@ -16,9 +16,7 @@ namespace mirage::estimation {
 namespace {
 
 constexpr BlockKey kPos0(blocks::kPosition, 0);
-constexpr BlockKey kVel0(blocks::kVelocity, 0);
 constexpr BlockKey kPos1(blocks::kPosition, 1);
-constexpr BlockKey kVel1(blocks::kVelocity, 1);
 constexpr BlockKey kVa4(blocks::kVirtualAnchor, 4);
 
 // Moves only `agent` (2-D) to t_s.

@@ -9,7 +9,6 @@ namespace {
 
 constexpr BlockKey kPos0(blocks::kPosition, 0);
 constexpr BlockKey kVel0(blocks::kVelocity, 0);
-constexpr BlockKey kPos1(blocks::kPosition, 1);
 constexpr BlockKey kVel1(blocks::kVelocity, 1);
 
 // Two agents, so the test also sees that only the named agent's velocity moves.

@@ -14,6 +14,7 @@
 #include <gtest/gtest.h>
 
 #include "mirage/core/rng.h"
+#include "rng_vectors.h"
 
 namespace mirage::estimation {
 namespace {
@@ -25,7 +26,7 @@ constexpr int kN = 7;
 Eigen::MatrixXd RangeRows(int m, core::Rng& rng) {
   Eigen::MatrixXd H = Eigen::MatrixXd::Zero(m, kN);
   for (int i = 0; i < m; ++i) {
-    const Vec3 u = Vec3(rng.Normal(), rng.Normal(), rng.Normal()).normalized();
+    const Vec3 u = testing::NormalVec3(rng).normalized();
     H.block<1, 3>(i, 0) = u.transpose();
     H(i, 6) = 1.0;
   }

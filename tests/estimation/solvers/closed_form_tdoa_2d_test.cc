@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "mirage/core/rng.h"
+#include "rng_vectors.h"
 
 namespace mirage::estimation {
 namespace {
@@ -33,8 +34,8 @@ TEST(ClosedFormTdoa2d, RootsContainTheTruthOnRandomGeometries) {
   for (std::uint64_t seed = 1; seed <= 200; ++seed) {
     core::Rng rng(seed);
     std::array<Vec3, 3> receivers;
-    for (auto& m : receivers) m = Vec3(rng.Uniform(0.0, 10.0), rng.Uniform(0.0, 8.0), rng.Uniform(0.3, 3.0));
-    const Vec3 sender(rng.Uniform(-5.0, 15.0), rng.Uniform(-5.0, 13.0), rng.Uniform(0.0, 2.0));
+    for (auto& m : receivers) m = testing::UniformVec3(rng, Vec3(0.0, 0.0, 0.3), Vec3(10.0, 8.0, 3.0));
+    const Vec3 sender = testing::UniformVec3(rng, Vec3(-5.0, -5.0, 0.0), Vec3(15.0, 13.0, 2.0));
     const double offset = rng.Uniform(-50.0, 50.0);
     const auto rho = PseudoRanges(receivers, sender, offset);
 

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "mirage/core/rng.h"
+#include "rng_vectors.h"
 
 namespace mirage::estimation {
 namespace {
@@ -20,7 +21,7 @@ std::vector<double> Values(const std::vector<Vec3>& receivers, const Vec3& sende
 
 std::vector<Vec3> RandomReceivers(core::Rng& rng, int n) {
   std::vector<Vec3> out;
-  for (int i = 0; i < n; ++i) out.emplace_back(rng.Uniform(0.0, 10.0), rng.Uniform(0.0, 8.0), rng.Uniform(0.3, 3.0));
+  for (int i = 0; i < n; ++i) out.push_back(testing::UniformVec3(rng, Vec3(0.0, 0.0, 0.3), Vec3(10.0, 8.0, 3.0)));
   return out;
 }
 
@@ -43,7 +44,7 @@ TEST(ClosedFormToa3d, FourReceiversRecoverSenderAndOffsetAmongTheRoots) {
   for (std::uint64_t seed = 1; seed <= 100; ++seed) {
     core::Rng rng(seed);
     const auto receivers = RandomReceivers(rng, 4);
-    const Vec3 sender(rng.Uniform(-3.0, 13.0), rng.Uniform(-3.0, 11.0), rng.Uniform(0.0, 2.5));
+    const Vec3 sender = testing::UniformVec3(rng, Vec3(-3.0, -3.0, 0.0), Vec3(13.0, 11.0, 2.5));
     const double offset = rng.Uniform(-30.0, 30.0);
     const auto rho = Values(receivers, sender, offset);
 
@@ -66,7 +67,7 @@ TEST(ClosedFormToa3d, FiveOrMoreReceiversGiveTheUniqueExactRoot) {
   for (std::uint64_t seed = 1; seed <= 50; ++seed) {
     core::Rng rng(seed, 1);
     const auto receivers = RandomReceivers(rng, 5 + static_cast<int>(seed % 4));
-    const Vec3 sender(rng.Uniform(1.0, 9.0), rng.Uniform(1.0, 7.0), rng.Uniform(0.0, 2.5));
+    const Vec3 sender = testing::UniformVec3(rng, Vec3(1.0, 1.0, 0.0), Vec3(9.0, 7.0, 2.5));
     const double offset = rng.Uniform(-30.0, 30.0);
 
     const ToaRoots3d roots = SolveToa3dClosedForm(receivers, Values(receivers, sender, offset));
@@ -120,7 +121,7 @@ TEST(ClosedFormToa3d, RangesAreExactWithFourReceiversAndMirroredWithThreeCoplana
   for (std::uint64_t seed = 1; seed <= 30; ++seed) {
     core::Rng rng(seed, 2);
     const auto receivers = RandomReceivers(rng, 4);
-    const Vec3 sender(rng.Uniform(1.0, 9.0), rng.Uniform(1.0, 7.0), rng.Uniform(0.0, 2.5));
+    const Vec3 sender = testing::UniformVec3(rng, Vec3(1.0, 1.0, 0.0), Vec3(9.0, 7.0, 2.5));
     const ToaRoots3d roots = SolveRange3dClosedForm(receivers, Values(receivers, sender, 0.0));
     ASSERT_EQ(roots.status, SolverStatus::kOk);
     ASSERT_EQ(roots.count, 1);

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "mirage/core/rng.h"
+#include "rng_vectors.h"
 
 namespace mirage::estimation {
 namespace {
@@ -19,7 +20,7 @@ std::vector<double> Values(const std::vector<Vec3>& receivers, const Vec3& sende
 
 std::vector<Vec3> RandomReceivers(core::Rng& rng, int n) {
   std::vector<Vec3> out;
-  for (int i = 0; i < n; ++i) out.emplace_back(rng.Uniform(0.0, 10.0), rng.Uniform(0.0, 8.0), rng.Uniform(0.3, 3.0));
+  for (int i = 0; i < n; ++i) out.push_back(testing::UniformVec3(rng, Vec3(0.0, 0.0, 0.3), Vec3(10.0, 8.0, 3.0)));
   return out;
 }
 
@@ -27,7 +28,7 @@ TEST(LinearToa, IsExactOnNoiseFreeRandomGeometries) {
   for (std::uint64_t seed = 1; seed <= 40; ++seed) {
     core::Rng rng(seed);
     const auto receivers = RandomReceivers(rng, 5 + static_cast<int>(seed % 4));
-    const Vec3 sender(rng.Uniform(1.0, 9.0), rng.Uniform(1.0, 7.0), rng.Uniform(0.0, 2.5));
+    const Vec3 sender = testing::UniformVec3(rng, Vec3(1.0, 1.0, 0.0), Vec3(9.0, 7.0, 2.5));
     const double offset = rng.Uniform(-100.0, 100.0);
     std::vector<double> sigmas;
     for (std::size_t i = 0; i < receivers.size(); ++i) sigmas.push_back(rng.Uniform(0.01, 0.3));

@@ -9,13 +9,14 @@
 #include <gtest/gtest.h>
 
 #include "mirage/core/rng.h"
+#include "rng_vectors.h"
 
 namespace mirage::estimation {
 namespace {
 
 std::vector<Vec3> RandomReceivers(core::Rng& rng, int n) {
   std::vector<Vec3> out;
-  for (int i = 0; i < n; ++i) out.emplace_back(rng.Uniform(0.0, 10.0), rng.Uniform(0.0, 8.0), rng.Uniform(0.3, 3.0));
+  for (int i = 0; i < n; ++i) out.push_back(testing::UniformVec3(rng, Vec3(0.0, 0.0, 0.3), Vec3(10.0, 8.0, 3.0)));
   return out;
 }
 
@@ -126,7 +127,7 @@ TEST(ToaNlls, RecoversTheSenderExactlyFromNoiseFreeRows) {
         const Vec3 sender = RandomSender(rng);
         const double offset = c.model == RowModel::kRange ? 0.0 : rng.Uniform(-20.0, 20.0);
         const auto values = Values(receivers, sender, offset);
-        const Vec3 start = sender + Vec3(rng.Normal(0.0, 0.5), rng.Normal(0.0, 0.5), rng.Normal(0.0, 0.5));
+        const Vec3 start = sender + Vec3(0.5 * testing::NormalVec3(rng));
         NllsOptions options;
         options.method = method;
 

@@ -22,6 +22,7 @@
 #include "mirage/core/rng.h"
 #include "mirage/estimation/robust/regression_diagnostics.h"
 #include "mirage/methods/acoustic/los_identification.h"
+#include "rng_vectors.h"
 
 namespace mirage::methods::acoustic {
 namespace {
@@ -87,7 +88,7 @@ TEST(ToaJacobianXyb, MatchesCentralDifferences) {
   // Generic point; nearly below the microphone (u_xy small); random points.
   std::vector<Vec3> senders{Vec3(6.0, 2.5, 1.2), Vec3(3.001, 4.0005, 1.2)};
   core::Rng rng(3);
-  for (int k = 0; k < 20; ++k) senders.emplace_back(rng.Uniform(0.0, 15.0), rng.Uniform(0.0, 11.0), rng.Uniform(0.5, 2.0));
+  for (int k = 0; k < 20; ++k) senders.push_back(testing::UniformVec3(rng, Vec3(0.0, 0.0, 0.5), Vec3(15.0, 11.0, 2.0)));
   for (const Vec3& s : senders) {
     const auto J = ToaJacobianXyb(s, mic);
     ASSERT_TRUE(J.has_value());
@@ -161,7 +162,8 @@ MonteCarloScore ScoreMonteCarlo(const LosIdentificationOptions& options) {
   MonteCarloScore score;
   for (int trial = 0; trial < 200; ++trial) {
     core::Rng rng(2020, static_cast<std::uint64_t>(trial));
-    const Vec3 sender(rng.Uniform(1.5, 13.5), rng.Uniform(1.5, 9.5), kSenderHeight_m);
+    const Vec2 xy_m = testing::UniformVec2(rng, Vec2(1.5, 1.5), Vec2(13.5, 9.5));
+      const Vec3 sender(xy_m.x(), xy_m.y(), kSenderHeight_m);
     std::vector<int> nlos;
     while (nlos.size() < 4) {
       const int i = static_cast<int>(rng.UniformInt(10));
@@ -266,7 +268,8 @@ TEST(IdentifyLos, LabelsNoEchoOrBiasedStampBeyondWhatItsTestResolves) {
     options.cook_voting = cook;
     for (int trial = 0; trial < 20; ++trial) {
       core::Rng rng(55, static_cast<std::uint64_t>(trial));
-      const Vec3 sender(rng.Uniform(2.0, 13.0), rng.Uniform(2.0, 9.0), kSenderHeight_m);
+      const Vec2 xy_m = testing::UniformVec2(rng, Vec2(2.0, 2.0), Vec2(13.0, 9.0));
+      const Vec3 sender(xy_m.x(), xy_m.y(), kSenderHeight_m);
       const auto stamps = EchoStamps(mics, sender, nlos, kSigma_m, rng);
       const LosIdentification result = IdentifyLos(mics, stamps, kSenderHeight_m, options);
       ASSERT_TRUE(result.found) << trial;
@@ -414,7 +417,8 @@ TEST(IdentifyLos, TimingTwelveMicrophonesTwoStampsEach) {
   const auto start = std::chrono::steady_clock::now();
   for (int f = 0; f < kFixes; ++f) {
     core::Rng rng(99, static_cast<std::uint64_t>(f));
-    const Vec3 sender(rng.Uniform(2.0, 13.0), rng.Uniform(2.0, 9.0), kSenderHeight_m);
+    const Vec2 xy_m = testing::UniformVec2(rng, Vec2(2.0, 2.0), Vec2(13.0, 9.0));
+      const Vec3 sender(xy_m.x(), xy_m.y(), kSenderHeight_m);
     const Vec3 mirrored(sender.x(), -sender.y(), kSenderHeight_m);
     auto stamps = NlosStamps(mics, sender, {1, 4, 6, 8}, 0.1, rng);
     for (std::size_t i = 0; i < mics.size(); ++i) stamps[i].push_back(Pseudo(mirrored, mics[i]) + rng.Normal(0.0, 0.1));

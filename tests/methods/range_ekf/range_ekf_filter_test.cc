@@ -11,6 +11,7 @@
 #include "estimation/jacobian_check.h"
 #include "mirage/core/rng.h"
 #include "mirage/methods/range_ekf/range_ekf.h"
+#include "rng_vectors.h"
 
 namespace mirage::methods::range_ekf {
 namespace {
@@ -169,10 +170,10 @@ TEST(RangeEkf, PositionNeesIsConsistentOnTrajectoriesOfItsOwnModel) {
     std::vector<Vec3> truth_m;
     do {
       truth_m.clear();
-      Vec3 position_m = start_m + options.initial_position_sigma_m * Vec3(rng.Normal(), rng.Normal(), rng.Normal());
-      Vec3 velocity_mps = options.initial_velocity_sigma_mps * Vec3(rng.Normal(), rng.Normal(), rng.Normal());
+      Vec3 position_m = start_m + options.initial_position_sigma_m * testing::NormalVec3(rng);
+      Vec3 velocity_mps = options.initial_velocity_sigma_mps * testing::NormalVec3(rng);
       for (int k = 1; k <= steps && inside(position_m); ++k) {
-        const Vec3 accel = options.motion.accel_sigma_mps2 * Vec3(rng.Normal(), rng.Normal(), rng.Normal());
+        const Vec3 accel = options.motion.accel_sigma_mps2 * testing::NormalVec3(rng);
         position_m += velocity_mps * dt_s + 0.5 * dt_s * dt_s * accel;
         velocity_mps += dt_s * accel;
         truth_m.push_back(position_m);

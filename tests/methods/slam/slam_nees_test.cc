@@ -17,6 +17,7 @@
 #include "methods/own_model.h"
 #include "mirage/geometry/visibility.h"
 #include "mirage/methods/slam/slam_tracker.h"
+#include "rng_vectors.h"
 
 namespace mirage::methods::slam {
 namespace {
@@ -66,7 +67,7 @@ StateNees RunNees(const SlamOptions& filter, int runs, int steps) {
     std::vector<Vec2> va_m;  // the truth: each VA drawn from its prior, the anchors exact
     for (const auto& va : vas.all()) {
       const double sigma_m = va.order == 0 ? 0.0 : kVaSigmaM;
-      va_m.push_back(va.position_m + Vec2(sigma_m * rng.Normal(), sigma_m * rng.Normal()));
+      va_m.push_back(va.position_m + Vec2(sigma_m * mirage::testing::NormalVec2(rng)));
     }
     const auto truth = methods::testing::DrawCvTrajectory(kWalker, start_m, steps, rng, inside);
     SlamTracker tracker(filter, vas, plan, 0.01);

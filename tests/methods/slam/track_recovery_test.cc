@@ -13,6 +13,7 @@
 
 #include "core/options_descriptor_expectations.h"
 #include "mirage/core/rng.h"
+#include "rng_vectors.h"
 
 namespace mirage::methods::slam {
 namespace {
@@ -149,7 +150,7 @@ TEST(TrackRecovery, NeverRestartsACorrectEstimate) {
   TrackRecovery recovery(TrackRecoveryOptions{});
   core::Rng rng(11, 0);
   for (int k = 0; k < 500; ++k) {
-    const Vec2 truth_m(rng.Uniform(0.5, 3.5), rng.Uniform(0.5, 2.5));
+    const Vec2 truth_m = testing::UniformVec2(rng, Vec2(0.5, 0.5), Vec2(3.5, 2.5));
     auto m = Measure(truth_m, 15, rng);
     for (auto& anchor : m) {
       for (auto& r : anchor.ranges) r.range_m += rng.Normal(0.0, 0.01);
