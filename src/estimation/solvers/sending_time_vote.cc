@@ -746,17 +746,22 @@ std::vector<MicStampChoice> ChosenStamps(const std::vector<std::vector<PeakPair>
   return chosen;
 }
 
-/// Over every emission, the selected floor pairs (*with_floor) and those whose microphone has a
-/// selected floor-ceiling pair too (*with_both).
-void CountFloorCeilingHeard(const Selection& selection, std::size_t* with_floor, std::size_t* with_both) {
-  *with_floor = *with_both = 0;
+/// Over every emission, the selected floor pairs and those whose microphone has a selected
+/// floor-ceiling pair too.
+struct FloorCeilingCounts {
+  std::size_t with_floor = 0;
+  std::size_t with_both = 0;
+};
+FloorCeilingCounts CountFloorCeilingHeard(const Selection& selection) {
+  FloorCeilingCounts counts;
   for (const auto& members : selection) {
     for (std::size_t slot = 0; slot < members.size(); slot += kKinds) {
       if (members[slot + kFloor] < 0) continue;
-      ++*with_floor;
-      if (members[slot + kFloorCeiling] >= 0) ++*with_both;
+      ++counts.with_floor;
+      if (members[slot + kFloorCeiling] >= 0) ++counts.with_both;
     }
   }
+  return counts;
 }
 
 /// Every emission's chosen stamps; and the last emission's other K clusters at the vote's t_0.
@@ -774,8 +779,7 @@ void FillChosen(const PairTable& pairs, const Selection& selection, const Sendin
   vote->chosen.clear();
   for (std::size_t e = 0; e < pairs.size(); ++e) vote->chosen.push_back(ChosenStamps(pairs[e], selection[e]));
   vote->alternatives.clear();
-  std::size_t with_floor = 0, with_both = 0;
-  CountFloorCeilingHeard(selection, &with_floor, &with_both);
+  const auto [with_floor, with_both] = CountFloorCeilingHeard(selection);
   const double n = static_cast<double>(with_floor);
   vote->floor_ceiling_heard_fraction = with_floor == 0 ? 0.0 : static_cast<double>(with_both) / n;
   if (pairs.empty() || options.method != SendingTimeVoteMethod::kConsensus) return;

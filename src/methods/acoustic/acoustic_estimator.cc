@@ -491,17 +491,41 @@ AcousticEstimator::VirtualSenderCheck AcousticEstimator::CheckVirtualSender(cons
   // agreement is evidence.
   if (static_cast<int>(rows.size()) < d + 2) return out;
   const auto most = [&](int count) { return 2 * count > static_cast<int>(rows.size()) && count >= d + 2; };
-  const double gate_m = 3.0 * options_.range_sigma_m;
-  int exact_at_prediction = 0, exact_at_update = 0;
-  for (const auto& row : rows) {
-    const double innovation_m = row.z_m - row.path.predicted_m;
-    const double moved_m = row.path.d_sender.head(d).dot(dx.head(d)) + dx(2 * d);
-    exact_at_prediction += std::abs(innovation_m) <= gate_m ? 1 : 0;
-    exact_at_update += std::abs(innovation_m - moved_m) <= gate_m ? 1 : 0;
-  }
-  out.prediction_exact = most(exact_at_prediction);
-  out.update_exact = most(exact_at_update);
+  out.prediction_exact = most(CountExplained(rows));
+  out.update_exact = most(CountExplained(rows, &dx));
   return out;
+}
+
+int AcousticEstimator::CountExplained(const std::vector<Row>& rows, const Eigen::VectorXd* dx) const {
+  const int d = dim();
+  const double gate_m = 3.0 * options_.range_sigma_m;
+  int count = 0;
+  for (const auto& row : rows) {
+    // The path's length after the step dx, to first order about the linearisation point.
+    const double moved_m = dx != nullptr ? row.path.d_sender.head(d).dot(dx->head(d)) + (*dx)(2 * d) : 0.0;
+    count += std::abs(row.z_m - row.path.predicted_m - moved_m) <= gate_m ? 1 : 0;
+  }
+  return count;
+}
+
+bool AcousticEstimator::DecideCoast(const std::optional<core::PositionIncrement>& increment,
+                                    const std::vector<Row>& rows, const estimation::IrlsResult& update, double t_s) {
+  if (!increment) return coasting_;  // no dead reckoning to test against: a coast goes on
+  const VirtualSenderCheck check = CheckVirtualSender(rows, *increment, update);
+  if (coasting_) {
+    const bool coast = check.breaks_dead_reckoning || !check.update_exact;
+    if (!coast) verified_s_ = t_s;
+    return coast;
+  }
+  if (t_s - verified_s_ > options_.virtual_sender_onset_s + options_.emission_interval_s) confirmed_ = false;
+  if (confirmed_ && check.breaks_dead_reckoning && !check.prediction_exact) return true;
+  if (check.prediction_exact && !check.breaks_dead_reckoning) {
+    confirmed_ = true;  // the stamps and the dead reckoning both agree with the track
+    verified_s_ = t_s;
+  } else if (check.update_exact) {
+    confirmed_ = false;  // a correction
+  }
+  return false;
 }
 
 StepOutput AcousticEstimator::Filter(const core::Epoch& epoch) {
@@ -557,7 +581,6 @@ StepOutput AcousticEstimator::Filter(const core::Epoch& epoch) {
   struct Outcome {
     std::optional<estimation::IrlsResult> update;
     std::vector<Row> rows;  // the update's stamp rows
-    long stamp_rows = 0;
     bool had_rows = false;
     int explained = 0;  // stamps within 3 sigma of a predicted path at the final estimate
     double prior_d2 = 0.0;  // the estimate's squared Mahalanobis distance from the prediction
@@ -571,8 +594,8 @@ StepOutput AcousticEstimator::Filter(const core::Epoch& epoch) {
     Eigen::MatrixXd P_lin = P_;
     std::vector<std::pair<int, double>> last_pairs;
     for (int pass = first_arrival ? 0 : 1; pass < passes; ++pass) {
-      const auto rows = pass == 0 && passes > 1 ? FirstArrivalRows(stamps, x_lin)
-                                                : AssociateRows(stamps, x_lin, P_lin, pass == 0 ? 0 : options_.echo_order);
+      auto rows = pass == 0 && passes > 1 ? FirstArrivalRows(stamps, x_lin)
+                                          : AssociateRows(stamps, x_lin, P_lin, pass == 0 ? 0 : options_.echo_order);
       o.had_rows = o.had_rows || !rows.empty() || increment.has_value();
       std::vector<std::pair<int, double>> pairs;
       for (const auto& row : rows) pairs.emplace_back(row.receiver, row.z_m);
@@ -581,15 +604,12 @@ StepOutput AcousticEstimator::Filter(const core::Epoch& epoch) {
       auto candidate = UpdateWithRows(rows, increment, x_lin);
       if (!candidate) break;
       o.update = std::move(candidate);
-      o.stamp_rows = static_cast<long>(rows.size());
-      o.rows = rows;
+      o.rows = std::move(rows);
       x_lin = x_ + o.update->dx;
       P_lin = o.update->P;
     }
     if (o.update && passes > 1) {
-      for (const auto& row : AssociateRows(stamps, x_lin, P_lin, options_.echo_order)) {
-        o.explained += std::abs(row.z_m - row.path.predicted_m) <= 3.0 * options_.range_sigma_m ? 1 : 0;
-      }
+      o.explained = CountExplained(AssociateRows(stamps, x_lin, P_lin, options_.echo_order));
       o.prior_d2 = o.update->dx.dot(prior_llt.solve(o.update->dx));
     }
     return o;
@@ -625,30 +645,10 @@ StepOutput AcousticEstimator::Filter(const core::Epoch& epoch) {
   // doubt (after a poor start, measured in docs/results/acoustic.md). With the echoes predicted
   // the same stamps are the wall's echoes of the true sender, and no such event is needed.
   if (passes == 1 && options_.estimator == "rekf" && options_.virtual_sender_false_alarm > 0.0 && outcome.update) {
-    bool coast = false;
-    if (!increment) {
-      coast = coasting_;  // no dead reckoning to test against: a coast goes on
-    } else {
-      const VirtualSenderCheck check = CheckVirtualSender(outcome.rows, *increment, *outcome.update);
-      if (coasting_) {
-        coast = check.breaks_dead_reckoning || !check.update_exact;
-        if (!coast) verified_s_ = epoch.t_s;
-      } else {
-        if (epoch.t_s - verified_s_ > options_.virtual_sender_onset_s + options_.emission_interval_s) confirmed_ = false;
-        if (confirmed_ && check.breaks_dead_reckoning && !check.prediction_exact) {
-          coast = true;
-        } else if (check.prediction_exact && !check.breaks_dead_reckoning) {
-          confirmed_ = true;  // the stamps and the dead reckoning both agree with the track
-          verified_s_ = epoch.t_s;
-        } else if (check.update_exact) {
-          confirmed_ = false;  // a correction
-        }
-      }
-    }
+    const bool coast = DecideCoast(increment, outcome.rows, *outcome.update, epoch.t_s);
     coasting_ = coast;
     if (coast) {
       outcome.rows.clear();
-      outcome.stamp_rows = 0;
       outcome.had_rows = increment.has_value();
       // The dead reckoning is what the track trusts here: its rows are not reweighted (ten prior
       // rows would outvote the increment's two as the stamps did). Without it, the prediction.
@@ -656,7 +656,7 @@ StepOutput AcousticEstimator::Filter(const core::Epoch& epoch) {
     }
   }
   const auto& update = outcome.update;
-  const long stamp_rows = outcome.stamp_rows;
+  const long stamp_rows = static_cast<long>(outcome.rows.size());
   const bool had_rows = outcome.had_rows;
   if (update) {
     x_ += update->dx;

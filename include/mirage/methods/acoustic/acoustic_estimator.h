@@ -173,6 +173,13 @@ class AcousticEstimator final : public Estimator {
   };
   [[nodiscard]] VirtualSenderCheck CheckVirtualSender(const std::vector<Row>& rows, const core::PositionIncrement& increment,
                                                       const estimation::IrlsResult& update) const;
+  /// The virtual-sender test's track state after this emission (confirmed_, verified_s_): true
+  /// when the track coasts on the dead reckoning, its stamps left out.
+  bool DecideCoast(const std::optional<core::PositionIncrement>& increment, const std::vector<Row>& rows,
+                   const estimation::IrlsResult& update, double t_s);
+  /// The rows whose stamp lies within 3 stamp sigmas of its path: at the rows' linearisation
+  /// point, or (dx given) after the state step dx.
+  [[nodiscard]] int CountExplained(const std::vector<Row>& rows, const Eigen::VectorXd* dx = nullptr) const;
   StepOutput Filter(const core::Epoch& epoch);
   StepOutput Snapshot(const core::Epoch& epoch);
   StepOutput Combinatorial(const core::Epoch& epoch);
